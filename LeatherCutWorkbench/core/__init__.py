@@ -1,0 +1,1 @@
+"""Algorithms and the job model.  Must not import FreeCAD GUI modules."""

@@ -1,0 +1,398 @@
+"""The job model: the value each pipeline stage returns and the next one takes.
+
+    DXF --import--> Drawing --recognise--> Recognition --nest--> Layout
+        --plan--> CutPlan --post--> machine file / live stream
+
+Units: every length is millimetres, every angle degrees, every area mm^2.
+All classes are plain dataclasses (no FreeCAD, no GUI) so a headless run, a
+test and the workbench share them.  ``to_json()`` methods return the structures
+documented in docs/CLI.md; they are the machine-readable contract of the CLI.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+from .geometry import (Point, Segment, bbox, path_length, path_points,
+                       signed_area)
+
+
+# --------------------------------------------------------------------------
+# Findings: what a stage wants a person to know (never printed by the core).
+# --------------------------------------------------------------------------
+
+@dataclass
+class Finding:
+    """A warning or note produced by a stage.
+
+    ``level`` is ``"info"``, ``"warning"`` or ``"error"``; ``code`` is a stable
+    machine-readable key (e.g. ``"skipped-entity"``); ``source`` names where it
+    came from (file, entity handle, layer, line) so a person can find it."""
+
+    level: str
+    code: str
+    message: str
+    source: Optional[str] = None
+
+    def to_json(self) -> Dict[str, Any]:
+        return {"level": self.level, "code": self.code, "message": self.message,
+                "source": self.source}
+
+
+# --------------------------------------------------------------------------
+# Import stage: Drawing
+# --------------------------------------------------------------------------
+
+@dataclass
+class EdgeSource:
+    """Where an imported edge came from in the DXF."""
+
+    layer: str = "0"
+    color: int = 256          # ACI colour, 256 = BYLAYER
+    handle: str = ""          # handle of the model-space entity (or INSERT)
+    dxftype: str = ""         # original entity type, e.g. "LWPOLYLINE"
+    block: str = ""           # "/"-joined block path when exploded from INSERTs
+    role: str = "cut"         # "cut", "mark", "grain", "mirror", "internal", "annotation", "ignore"
+
+
+@dataclass
+class LineEdge:
+    start: Point
+    end: Point
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class ArcEdge:
+    """Circular arc; ``sweep`` is signed (positive = CCW) in degrees.  A full
+    circle has |sweep| == 360."""
+
+    center: Point
+    radius: float
+    start_angle: float
+    sweep: float
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class EllipseEdge:
+    """Elliptical arc in world XY: ``major_axis`` is the vector from the centre
+    to the major apex (mm), ``ratio`` minor/major, params in radians running
+    counter-clockwise from ``start_param`` to ``end_param``."""
+
+    center: Point
+    major_axis: Point
+    ratio: float
+    start_param: float
+    end_param: float
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class SplineEdge:
+    """Non-uniform rational B-spline: ``poles`` (mm), ``knots`` (full knot
+    vector with repeats), ``weights`` (empty = non-rational), ``degree``.
+    ``from_fit_points`` is True when the DXF only held fit points and the poles
+    were re-interpolated."""
+
+    poles: List[Point]
+    knots: List[float]
+    weights: List[float]
+    degree: int
+    closed: bool = False
+    from_fit_points: bool = False
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class Mark:
+    """A point mark (drill hole, notch, punch) in mm."""
+
+    position: Point
+    kind: str = "point"       # "drill", "notch", "point"
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class TextNote:
+    """TEXT / MTEXT kept as annotation."""
+
+    text: str
+    position: Point
+    height: float = 0.0
+    src: EdgeSource = field(default_factory=EdgeSource)
+
+
+@dataclass
+class Drawing:
+    """What import returns: edges in mm with their source, marks, texts.
+
+    ``pieces`` maps a piece name to the indices (into ``edges``) of that piece's
+    edges for pattern files where each block is a piece (AAMA/ASTM); empty for
+    ordinary drawings.  ``offset`` is the translation that was removed to bring
+    huge coordinates to a local origin (add it back on export)."""
+
+    path: str
+    edges: List[Any] = field(default_factory=list)      # LineEdge | ArcEdge | EllipseEdge | SplineEdge
+    marks: List[Mark] = field(default_factory=list)
+    texts: List[TextNote] = field(default_factory=list)
+    units: str = "mm"
+    units_source: str = "default"
+    dxf_version: str = ""
+    offset: Point = (0.0, 0.0)
+    pieces: Dict[str, List[int]] = field(default_factory=dict)
+    findings: List[Finding] = field(default_factory=list)
+    stats: Dict[str, Any] = field(default_factory=dict)
+
+
+# --------------------------------------------------------------------------
+# Recognition stage: parts with contours, lead-ins, open chains and flags
+# --------------------------------------------------------------------------
+
+@dataclass
+class Contour:
+    """A closed loop of segments (start of the first == end of the last).
+
+    Outer contours are stored counter-clockwise, holes clockwise.  ``shared``
+    holds the indices of segments shared with another contour (common-edge
+    layouts): the planner cuts each shared edge once."""
+
+    id: str
+    segments: List[Segment]
+    layer: str = ""
+    shared: List[int] = field(default_factory=list)
+
+    def points(self, chord_tol: float = 0.01) -> List[Point]:
+        """Closed polyline without the repeated first point."""
+        pts = path_points(self.segments, chord_tol)
+        return pts[:-1] if len(pts) > 1 else pts
+
+    @property
+    def length(self) -> float:
+        return path_length(self.segments)
+
+    @property
+    def area(self) -> float:
+        """Signed area in mm^2 (positive = counter-clockwise)."""
+        return signed_area(self.points())
+
+    @property
+    def bbox(self) -> Tuple[float, float, float, float]:
+        return bbox(self.points())
+
+
+@dataclass
+class LeadIn:
+    """Open chain that enters a contour: the cut starts at ``segments[0].start``
+    (the free end) and reaches the contour at ``segments[-1].end``.
+    ``role`` is ``"lead_in"`` or ``"lead_out"`` (then it starts on the contour)."""
+
+    id: str
+    contour_id: str
+    segments: List[Segment]
+    role: str = "lead_in"
+
+    @property
+    def start(self) -> Point:
+        return self.segments[0].start
+
+    @property
+    def end(self) -> Point:
+        return self.segments[-1].end
+
+    @property
+    def length(self) -> float:
+        return path_length(self.segments)
+
+
+@dataclass
+class Part:
+    """One part: an outer contour, its holes, its lead-ins and marks.
+
+    ``excluded`` parts are not nested or cut (a person or a flag decided so).
+    ``quantity`` and ``rotations`` feed nesting; ``rotations`` is None for any
+    angle, or a list of allowed angles in degrees."""
+
+    id: str
+    outer: Contour
+    holes: List[Contour] = field(default_factory=list)
+    lead_ins: List[LeadIn] = field(default_factory=list)
+    marks: List[Mark] = field(default_factory=list)
+    name: str = ""
+    excluded: bool = False
+    quantity: int = 1
+    rotations: Optional[List[float]] = None
+    mirror_allowed: bool = False
+    grade: int = 0
+    parent_id: Optional[str] = None    # part whose hole this part lies in
+
+    @property
+    def net_area(self) -> float:
+        return abs(self.outer.area) - sum(abs(h.area) for h in self.holes)
+
+    def contours(self) -> List[Contour]:
+        return list(self.holes) + [self.outer]
+
+
+@dataclass
+class OpenChain:
+    """A connected run of edges that does not close and is not a lead-in."""
+
+    id: str
+    segments: List[Segment]
+    layer: str = ""
+
+    @property
+    def start(self) -> Point:
+        return self.segments[0].start
+
+    @property
+    def end(self) -> Point:
+        return self.segments[-1].end
+
+    @property
+    def length(self) -> float:
+        return path_length(self.segments)
+
+
+@dataclass
+class Flag:
+    """A recognition doubt for a person to resolve.
+
+    ``kind`` is ``"over"`` (a closed region that is probably not a part) or
+    ``"under"`` (an open chain that is probably a contour with a gap).
+    ``ids`` are the contour / chain ids concerned; ``gap`` the gap in mm for
+    under-recognition; ``fix`` the proposed bridge segments; ``accepted`` is None
+    until a person (or ``--close-gaps``) decides."""
+
+    id: str
+    kind: str
+    ids: List[str]
+    reason: str
+    gap: Optional[float] = None
+    fix: List[Segment] = field(default_factory=list)
+    accepted: Optional[bool] = None
+
+
+@dataclass
+class Recognition:
+    """What recognition returns."""
+
+    parts: List[Part] = field(default_factory=list)
+    open_chains: List[OpenChain] = field(default_factory=list)
+    flags: List[Flag] = field(default_factory=list)
+    findings: List[Finding] = field(default_factory=list)
+    units: str = "mm"
+
+    def active_parts(self) -> List[Part]:
+        return [p for p in self.parts if not p.excluded]
+
+
+# --------------------------------------------------------------------------
+# Nesting stage: containers and placements
+# --------------------------------------------------------------------------
+
+@dataclass
+class Container:
+    """Material to nest on.  ``kind`` is ``"sheet"``, ``"strip"`` or ``"hide"``.
+
+    ``outline`` is a closed polygon (mm, CCW).  For a strip the outline's length
+    is the used length after nesting.  ``defects`` are polygons no part may
+    overlap; ``zones`` are (grade, polygon) pairs: a part of grade g may only lie
+    where the zone grade is >= g (outside every zone the hide has ``base_grade``)."""
+
+    id: str
+    kind: str
+    outline: List[Point]
+    defects: List[List[Point]] = field(default_factory=list)
+    zones: List[Tuple[int, List[Point]]] = field(default_factory=list)
+    base_grade: int = 0
+
+
+@dataclass
+class Placement:
+    """Where one copy of a part goes: mirror (about the part's Y axis) first,
+    then rotate by ``angle`` degrees about the part's origin, then translate by
+    (``x``, ``y``) mm into container coordinates."""
+
+    part_id: str
+    copy: int
+    container: str
+    x: float
+    y: float
+    angle: float = 0.0
+    mirrored: bool = False
+
+
+@dataclass
+class Layout:
+    """What nesting returns."""
+
+    containers: List[Container] = field(default_factory=list)
+    placements: List[Placement] = field(default_factory=list)
+    unplaced: List[Tuple[str, int]] = field(default_factory=list)
+    metrics: Dict[str, Any] = field(default_factory=dict)
+    findings: List[Finding] = field(default_factory=list)
+
+
+# --------------------------------------------------------------------------
+# Planning stage: the ordered cut job
+# --------------------------------------------------------------------------
+
+@dataclass
+class CutItem:
+    """One contour (or lead-in + contour, or open chain) cut in one go.
+
+    ``segments`` are in cutting order: the lead-in (if any) first, then the
+    contour starting and ending at ``entry``.  ``kind`` is ``"hole"``,
+    ``"outer"`` or ``"open"``; ``lead_in_count`` says how many leading segments
+    are the lead-in; ``lifts`` are indices into ``segments`` before which the
+    knife lifts, turns and plunges again."""
+
+    contour_id: str
+    part_id: str
+    kind: str
+    entry: Point
+    segments: List[Segment]
+    lead_in_count: int = 0
+    lifts: List[int] = field(default_factory=list)
+
+    @property
+    def start(self) -> Point:
+        return self.segments[0].start
+
+    @property
+    def end(self) -> Point:
+        return self.segments[-1].end
+
+    @property
+    def length(self) -> float:
+        return path_length(self.segments)
+
+
+@dataclass
+class CutPlan:
+    """What planning returns: cut items in order, starting from and returning to
+    ``home`` (machine zero).  Idle moves are implied between consecutive items."""
+
+    items: List[CutItem] = field(default_factory=list)
+    home: Point = (0.0, 0.0)
+    method: str = "nn"
+    metrics: Dict[str, Any] = field(default_factory=dict)
+    findings: List[Finding] = field(default_factory=list)
+
+    def idle_moves(self) -> List[Tuple[Point, Point]]:
+        """Knife-up moves: home -> first start, end -> next start, last end -> home."""
+        moves: List[Tuple[Point, Point]] = []
+        here = self.home
+        for it in self.items:
+            moves.append((here, it.start))
+            here = it.end
+        moves.append((here, self.home))
+        return moves
+
+
+def polygons_of(contours: Sequence[Contour], chord_tol: float = 0.01) -> List[List[Point]]:
+    """Closed polylines of several contours (helper for nesting and previews)."""
+    return [c.points(chord_tol) for c in contours]

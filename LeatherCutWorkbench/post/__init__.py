@@ -1,0 +1,1 @@
+"""Machine-file writers, machine profiles and the live machine link."""

@@ -1,0 +1,31 @@
+"""Shared pytest set-up: make FreeCAD importable and name the test data folders.
+
+The venv made by tools/setup.sh already has FreeCAD on its path (a .pth file);
+this keeps plain ``/usr/bin/python3 -m pytest`` working too.
+"""
+
+import os
+import sys
+
+import pytest
+
+FREECAD_LIB = "/usr/lib/freecad-python3/lib"
+if os.path.isdir(FREECAD_LIB) and FREECAD_LIB not in sys.path:
+    sys.path.append(FREECAD_LIB)
+
+TESTS_DIR = os.path.dirname(os.path.abspath(__file__))
+REPO_DIR = os.path.dirname(TESTS_DIR)
+DATA_DIR = os.path.join(TESTS_DIR, "data")
+SAMPLES_DIR = os.path.join(DATA_DIR, "samples")
+
+
+@pytest.fixture
+def data_dir() -> str:
+    """tests/data: small real and generated fixtures (see its README for licences)."""
+    return DATA_DIR
+
+
+@pytest.fixture
+def samples_dir() -> str:
+    """tests/data/samples: real DXF files from public projects (licences in README.md)."""
+    return SAMPLES_DIR

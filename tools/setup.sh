@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Set up everything LeatherCut needs on Debian 12, idempotently:
+#   1. Debian packages (FreeCAD, Xvfb for GUI tests) -- only when missing;
+#   2. a venv in .venv made from /usr/bin/python3 with --system-site-packages;
+#   3. the pinned Python dependencies and the project itself (editable);
+#   4. FreeCAD importable inside the venv (a .pth file);
+#   5. the workbench linked into FreeCAD's user Mod folder.
+# Re-running only redoes a step whose inputs changed.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$here"
+
+sudo_cmd=""
+if [ "$(id -u)" != "0" ]; then sudo_cmd="sudo"; fi
+
+debs=(freecad-python3 xvfb xauth python3-venv)
+missing=()
+for p in "${debs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  $sudo_cmd apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+venv="$here/.venv"
+if [ ! -x "$venv/bin/python" ]; then
+  echo "setup: creating $venv"
+  /usr/bin/python3 -m venv --system-site-packages "$venv"
+fi
+
+stamp="$venv/.leathercut-stamp"
+want="$(cat requirements.txt pyproject.toml | sha256sum | cut -d' ' -f1)"
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  echo "setup: installing Python dependencies"
+  "$venv/bin/pip" install -q --disable-pip-version-check -r requirements.txt
+  "$venv/bin/pip" install -q --disable-pip-version-check --no-deps --no-build-isolation -e .
+  echo "$want" > "$stamp"
+fi
+
+site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+echo "/usr/lib/freecad-python3/lib" > "$site/leathercut-freecad.pth"
+
+# Link the workbench into FreeCAD's user Mod folder (FreeCAD computes the folder).
+"$venv/bin/python" "$here/tools/install_workbench.py"
