@@ -1,0 +1,158 @@
+"""Part geometry as the nesting engine sees it.
+
+A :class:`PieceType` is one part (true shape, mm): an outer ring (CCW) and
+hole rings (CW) as float arrays, its quantity and what it may do (allowed
+angles, mirroring, grade).  A :class:`Variant` is one orientation of a piece
+type -- mirrored about the part's Y axis first, then rotated about the part's
+origin -- in the engine's integer grid (pyclipper works on integers):
+
+* ``outer``: the outline inflated by half the spacing plus one grid unit
+  (so rounding of clipped vertices can never create a real overlap),
+* ``holes``: the holes shrunk by the same amount (room for part-in-part).
+
+The placement of a copy is a translation of its variant; the reference point
+is the part origin, exactly like :class:`~LeatherCutWorkbench.core.model.Placement`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence
+
+import numpy as np
+import pyclipper
+
+from ..errors import InputError
+from ..geometry import signed_area
+from ..model import Part
+
+IntPath = List[List[int]]
+
+
+@dataclass
+class PieceType:
+    """One part's true shape (mm) and nesting rules."""
+
+    key: str
+    outer: np.ndarray
+    holes: List[np.ndarray]
+    quantity: int = 1
+    angles: List[float] = field(default_factory=lambda: [0.0])
+    mirror: bool = False
+    grade: int = 0
+
+    @property
+    def area(self) -> float:
+        return abs(_area(self.outer)) - sum(abs(_area(h)) for h in self.holes)
+
+
+@dataclass
+class Variant:
+    """One orientation of a piece type in grid units (see module doc)."""
+
+    index: int
+    type_index: int
+    angle: float
+    mirrored: bool
+    outer: IntPath
+    holes: List[IntPath]
+    bbox: tuple  # (xmin, ymin, xmax, ymax) of ``outer``, grid units
+
+
+def _area(a: np.ndarray) -> float:
+    x, y = a[:, 0], a[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def _ring(points: Sequence, ccw: bool) -> np.ndarray:
+    a = np.asarray(points, dtype=float)
+    if len(a) > 1 and np.allclose(a[0], a[-1]):
+        a = a[:-1]
+    if (_area(a) > 0) != ccw:
+        a = a[::-1]
+    return a
+
+
+def allowed_angles(rotations: Optional[Sequence[float]], step: float) -> List[float]:
+    """The angles tried for a part: its own list, or every ``step`` degrees."""
+    if rotations is None:
+        n = max(1, int(round(360.0 / step)))
+        return [round(i * 360.0 / n, 9) for i in range(n)]
+    out = sorted({round(float(a) % 360.0, 9) for a in rotations})
+    return out or [0.0]
+
+
+def piece_from_part(part: Part, chord_tol: float, step: float,
+                    rotations_override: Optional[List[float]] = None,
+                    mirror_override: Optional[bool] = None) -> PieceType:
+    """Flatten a part's contours (arcs within ``chord_tol`` mm)."""
+    outer = part.outer.points(chord_tol)
+    if len(outer) < 3 or abs(signed_area(outer)) <= 0:
+        raise InputError(f"part {part.id}: outer contour has no area, cannot be nested")
+    holes = [_ring(h.points(chord_tol), ccw=False) for h in part.holes if len(h.points(chord_tol)) >= 3]
+    rots = rotations_override if rotations_override is not None else part.rotations
+    if part.quantity < 0:
+        raise InputError(f"part {part.id}: quantity {part.quantity} is negative")
+    return PieceType(key=part.id, outer=_ring(outer, ccw=True), holes=holes,
+                     quantity=int(part.quantity), angles=allowed_angles(rots, step),
+                     mirror=part.mirror_allowed if mirror_override is None else mirror_override,
+                     grade=int(part.grade))
+
+
+def transform_ring(ring: np.ndarray, angle: float, mirrored: bool, dx: float = 0.0,
+                   dy: float = 0.0) -> np.ndarray:
+    """Mirror about Y, rotate ``angle`` degrees about the origin, translate (mm)."""
+    a = ring.copy()
+    if mirrored:
+        a[:, 0] = -a[:, 0]
+        a = a[::-1]          # mirroring flips the orientation: restore it
+    t = math.radians(angle)
+    c, s = math.cos(t), math.sin(t)
+    out = np.empty_like(a)
+    out[:, 0] = c * a[:, 0] - s * a[:, 1] + dx
+    out[:, 1] = s * a[:, 0] + c * a[:, 1] + dy
+    return out
+
+
+def to_grid(ring: np.ndarray, scale: float) -> IntPath:
+    return [[int(round(x * scale)), int(round(y * scale))] for x, y in ring]
+
+
+def offset_paths(paths: List[IntPath], delta: float, arc_tol: float) -> List[IntPath]:
+    """Grow (delta > 0) or shrink a set of closed grid paths with round joins."""
+    if delta == 0:
+        return [list(p) for p in paths]
+    off = pyclipper.PyclipperOffset(2.0, max(arc_tol, 0.25))
+    off.AddPaths(paths, pyclipper.JT_ROUND, pyclipper.ET_CLOSEDPOLYGON)
+    return off.Execute(delta)
+
+
+def make_variants(types: Sequence[PieceType], scale: float, half_gap: float,
+                  arc_tol: float) -> List[Variant]:
+    """Every allowed orientation of every type, inflated by ``half_gap`` mm plus one
+    grid unit (see module doc)."""
+    out: List[Variant] = []
+    grow = half_gap * scale + 1.0
+    for ti, t in enumerate(types):
+        mirrors = [False, True] if t.mirror else [False]
+        for m in mirrors:
+            for ang in t.angles:
+                outer = to_grid(transform_ring(t.outer, ang, m), scale)
+                grown = offset_paths([outer], grow, arc_tol * scale)
+                grown = max(grown, key=lambda p: abs(pyclipper.Area(p)))
+                if pyclipper.Orientation(grown) is False:
+                    grown = grown[::-1]
+                holes: List[IntPath] = []
+                for h in t.holes:
+                    hp = to_grid(transform_ring(h, ang, m), scale)
+                    if not pyclipper.Orientation(hp):
+                        hp = hp[::-1]
+                    for sh in offset_paths([hp], -grow, arc_tol * scale):
+                        if abs(pyclipper.Area(sh)) > 0:
+                            holes.append(sh if pyclipper.Orientation(sh) else sh[::-1])
+                xs = [p[0] for p in grown]
+                ys = [p[1] for p in grown]
+                out.append(Variant(len(out), ti, ang, m, grown, holes,
+                                   (min(xs), min(ys), max(xs), max(ys))))
+    return out

@@ -1,0 +1,86 @@
+"""SVG picture of a cut plan: parts, cuts in order, idle moves dashed.
+
+Drawn in machine coordinates (mm, Y up; the SVG flips Y so the picture looks
+like the table seen from above).  Colours follow the legend in
+docs/WORKBENCH.md: outer cuts blue, holes red, open chains grey, lead-ins
+orange, idle moves dashed green, entry points black dots, order numbers next to
+each entry.
+"""
+
+from __future__ import annotations
+
+from typing import Iterable, List, Sequence, Tuple
+from xml.sax.saxutils import escape
+
+from ..core.geometry import Point, bbox, path_points
+from ..core.model import CutPlan, Part
+
+KIND_COLOURS = {"outer": "#1f5fbf", "hole": "#c62828", "open": "#757575"}
+LEAD_IN_COLOUR = "#ef6c00"
+IDLE_COLOUR = "#2e7d32"
+PART_FILL = "#f3e9dc"
+
+
+def _path_d(pts: Sequence[Point], closed: bool) -> str:
+    body = " L ".join(f"{x:.3f} {-y:.3f}" for x, y in pts)
+    return f"M {body}{' Z' if closed else ''}"
+
+
+def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "") -> str:
+    """Return the SVG document text for ``plan`` (and the filled ``parts``)."""
+    parts = list(parts)
+    all_pts: List[Point] = [plan.home]
+    for it in plan.items:
+        all_pts.extend(path_points(it.segments, 0.2))
+    for p in parts:
+        all_pts.extend(p.outer.points(0.2))
+    xmin, ymin, xmax, ymax = bbox(all_pts)
+    w, h = max(xmax - xmin, 1.0), max(ymax - ymin, 1.0)
+    pad = 0.04 * max(w, h) + 5.0
+    stroke = max(w, h) / 800.0
+    font = max(w, h) / 70.0
+    out: List[str] = [
+        '<?xml version="1.0" encoding="UTF-8"?>',
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{(w + 2 * pad):.1f}mm" '
+        f'height="{(h + 2 * pad):.1f}mm" '
+        f'viewBox="{xmin - pad:.3f} {-(ymax + pad):.3f} {w + 2 * pad:.3f} {h + 2 * pad:.3f}">',
+        f"<title>{escape(title or 'LeatherCut cut plan')}</title>",
+        f'<g id="parts" fill="{PART_FILL}" fill-rule="evenodd" stroke="none">',
+    ]
+    for p in parts:
+        d = " ".join(_path_d(c.points(0.2), True) for c in [p.outer] + list(p.holes))
+        out.append(f'<path id="part-{escape(p.id)}" d="{d}"/>')
+    out.append("</g>")
+    out.append(f'<g id="idle" fill="none" stroke="{IDLE_COLOUR}" stroke-width="{stroke:.3f}" '
+               f'stroke-dasharray="{4 * stroke:.3f} {3 * stroke:.3f}">')
+    for a, b in plan.idle_moves():
+        out.append(f'<path d="{_path_d([a, b], False)}"/>')
+    out.append("</g>")
+    out.append(f'<g id="cuts" fill="none" stroke-width="{1.5 * stroke:.3f}">')
+    for it in plan.items:
+        lead, body = it.segments[: it.lead_in_count], it.segments[it.lead_in_count:]
+        if lead:
+            out.append(f'<path class="lead-in" stroke="{LEAD_IN_COLOUR}" '
+                       f'd="{_path_d(path_points(lead, 0.05), False)}"/>')
+        if body:
+            colour = KIND_COLOURS.get(it.kind, KIND_COLOURS["open"])
+            out.append(f'<path class="{it.kind}" data-contour="{escape(it.contour_id)}" '
+                       f'stroke="{colour}" d="{_path_d(path_points(body, 0.05), False)}"/>')
+    out.append("</g>")
+    out.append(f'<g id="order" font-family="sans-serif" font-size="{font:.3f}">')
+    for n, it in enumerate(plan.items, start=1):
+        x, y = it.start
+        out.append(f'<circle cx="{x:.3f}" cy="{-y:.3f}" r="{1.5 * stroke:.3f}" fill="black"/>')
+        out.append(f'<text x="{x + font * 0.3:.3f}" y="{-y - font * 0.3:.3f}">{n}</text>')
+    hx, hy = plan.home
+    out.append(f'<text x="{hx:.3f}" y="{-hy + font:.3f}" fill="{IDLE_COLOUR}">home</text>')
+    out.append("</g>")
+    out.append("</svg>")
+    return "\n".join(out) + "\n"
+
+
+def legend() -> List[Tuple[str, str]]:
+    """(what, colour) pairs used by the picture, for documentation and the GUI."""
+    return [("outer contour cut", KIND_COLOURS["outer"]), ("hole cut", KIND_COLOURS["hole"]),
+            ("open chain cut", KIND_COLOURS["open"]), ("lead-in", LEAD_IN_COLOUR),
+            ("idle move (dashed)", IDLE_COLOUR), ("part material", PART_FILL)]
