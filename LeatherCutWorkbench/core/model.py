@@ -54,6 +54,7 @@ class EdgeSource:
     dxftype: str = ""         # original entity type, e.g. "LWPOLYLINE"
     block: str = ""           # "/"-joined block path when exploded from INSERTs
     role: str = "cut"         # "cut", "mark", "grain", "mirror", "internal", "annotation", "ignore"
+    piece: str = ""           # key into Drawing.pieces (AAMA/ASTM pattern files), "" otherwise
 
 
 @dataclass
@@ -125,13 +126,55 @@ class TextNote:
 
 
 @dataclass
+class PieceInfo:
+    """One pattern piece of an AAMA / ASTM D6673 file (one block INSERT).
+
+    ``edges``, ``marks`` and ``texts`` are indices into the Drawing's lists.
+    ``grain_angle`` is the direction of the grain line (layer 7) in degrees in
+    [0, 180), None without one; ``mirror_line`` the two end points (mm) of the
+    fold line (layer 6) when the drawn piece is half of the cut piece.
+    ``bbox`` is (xmin, ymin, xmax, ymax) in mm of the piece's cut edges."""
+
+    key: str
+    name: str
+    size: str = ""
+    quantity: int = 1
+    block: str = ""
+    insert_handle: str = ""
+    category: str = ""
+    annotation: str = ""
+    edges: List[int] = field(default_factory=list)
+    marks: List[int] = field(default_factory=list)
+    texts: List[int] = field(default_factory=list)
+    grain_angle: Optional[float] = None
+    mirror_line: Optional[Tuple[Point, Point]] = None
+    bbox: Optional[Tuple[float, float, float, float]] = None
+
+    def to_json(self) -> Dict[str, Any]:
+        return {"key": self.key, "name": self.name, "size": self.size,
+                "quantity": self.quantity, "block": self.block,
+                "insert_handle": self.insert_handle, "category": self.category,
+                "annotation": self.annotation, "edges": len(self.edges),
+                "marks": len(self.marks), "texts": len(self.texts),
+                "grain_angle": self.grain_angle,
+                "mirror_line": [list(p) for p in self.mirror_line] if self.mirror_line else None,
+                "bbox": list(self.bbox) if self.bbox else None}
+
+
+@dataclass
 class Drawing:
     """What import returns: edges in mm with their source, marks, texts.
 
-    ``pieces`` maps a piece name to the indices (into ``edges``) of that piece's
-    edges for pattern files where each block is a piece (AAMA/ASTM); empty for
-    ordinary drawings.  ``offset`` is the translation that was removed to bring
-    huge coordinates to a local origin (add it back on export)."""
+    ``pieces`` maps a piece key (the block name, ``"#2"``... appended when a
+    block is inserted more than once) to a :class:`PieceInfo` for pattern files
+    where each block is a piece (AAMA/ASTM); empty for ordinary drawings.
+    Every edge/mark/text of a piece has ``src.piece`` set to that key.
+    ``units`` is the unit the file was read in (``units_source``: "header",
+    "aama-text", "option" or "assumed"); coordinates are always mm.
+    ``offset`` is the translation (mm) that was removed to bring huge
+    coordinates to a local origin (add it back on export).  ``stats`` holds
+    what ``leathercut inspect`` reports (entity counts, layers, blocks, bbox,
+    clean-up counts; see docs/CLI.md)."""
 
     path: str
     edges: List[Any] = field(default_factory=list)      # LineEdge | ArcEdge | EllipseEdge | SplineEdge
@@ -141,7 +184,7 @@ class Drawing:
     units_source: str = "default"
     dxf_version: str = ""
     offset: Point = (0.0, 0.0)
-    pieces: Dict[str, List[int]] = field(default_factory=dict)
+    pieces: Dict[str, PieceInfo] = field(default_factory=dict)
     findings: List[Finding] = field(default_factory=list)
     stats: Dict[str, Any] = field(default_factory=dict)
 

@@ -74,17 +74,24 @@ def _kind(value: Any) -> str:
     return "json"
 
 
+#: fields that the job stores in its own properties (see pipeline.add_nest_container_properties)
+SPECIAL_FIELDS = {"Nest": {"container"}}
+
+
 def fields_of(stage: StageOptions) -> List[Tuple[str, str, str, Any]]:
-    """(field name, property name, property type or "json", default) per field."""
+    """(field name, property name, property type or "json" / "optstr", default) per field."""
     cls = options_class(stage)
     if cls is None:
         return []
     out = []
     for f in dataclasses.fields(cls):
-        if not f.init:
+        if not f.init or f.name in SPECIAL_FIELDS.get(stage.key, ()):
             continue
         d = _default(f)
-        out.append((f.name, stage.key + camel(f.name), _kind(d), d))
+        kind = _kind(d)
+        if d is None and str(f.type).replace(" ", "") in ("Optional[str]", "str|None"):
+            kind = "optstr"
+        out.append((f.name, stage.key + camel(f.name), kind, d))
     return out
 
 
@@ -93,6 +100,8 @@ def _to_json_text(value: Any) -> str:
         return ""
     if dataclasses.is_dataclass(value):
         value = dataclasses.asdict(value)
+    if isinstance(value, (set, frozenset)):
+        value = sorted(value)
     return json.dumps(value)
 
 
@@ -109,6 +118,8 @@ def add_properties(obj, stage: StageOptions, doc_of: str = "") -> List[str]:
         if ptype == "json":
             obj.addProperty("App::PropertyString", pname, stage.key, tip + " (JSON; empty = none)")
             setattr(obj, pname, _to_json_text(default))
+        elif ptype == "optstr":
+            obj.addProperty("App::PropertyString", pname, stage.key, tip + " (empty = none)")
         else:
             obj.addProperty(ptype, pname, stage.key, tip)
             setattr(obj, pname, default)
@@ -140,19 +151,27 @@ def read_options(obj, stage: StageOptions):
             continue
         value = getattr(obj, pname)
         if ptype == "json":
-            value = _from_json_text(value, getattr(base, fname))
+            try:
+                value = _from_json_text(value, getattr(base, fname))
+            except ValueError as exc:
+                from ..core.errors import InputError
+                raise InputError(f"{pname}: not valid JSON ({exc})") from None
+        elif ptype == "optstr":
+            value = value.strip() or None
         kwargs[fname] = value
     return cls(**kwargs)
 
 
 def _from_json_text(text: str, template: Any) -> Any:
     if not text.strip():
-        return None
+        return type(template)() if isinstance(template, (set, frozenset, list)) else None
     value = json.loads(text)
     if dataclasses.is_dataclass(template) and isinstance(value, dict):
         return type(template)(**value)
     if isinstance(template, tuple) and isinstance(value, list):
         return tuple(value)
+    if isinstance(template, (set, frozenset)) and isinstance(value, list):
+        return type(template)(value)
     return value
 
 
@@ -164,6 +183,8 @@ def write_options(obj, stage: StageOptions, options) -> None:
         value = getattr(options, fname)
         if ptype == "json":
             value = _to_json_text(value)
+        elif ptype == "optstr":
+            value = value or ""
         if getattr(obj, pname) != value:
             setattr(obj, pname, value)
 

@@ -68,7 +68,8 @@ class NestOptions:
       defects, mm.
     * ``rotation_step`` -- degrees between tried angles for parts whose
       ``rotations`` is None (any angle); ``rotations_override`` (a list of
-      degrees) replaces every part's own setting when given.
+      degrees) replaces every part's own setting when given; ``free_rotation``
+      lets every part turn to any angle (tried every ``rotation_step``).
     * ``mirror_override`` -- when not None, replaces every part's
       ``mirror_allowed``.
     * ``time_budget`` -- seconds of improvement search after the constructive
@@ -91,6 +92,7 @@ class NestOptions:
     margin: float = 0.0
     rotation_step: float = 30.0
     rotations_override: Optional[List[float]] = None
+    free_rotation: bool = False
     mirror_override: Optional[bool] = None
     time_budget: float = 10.0
     max_evaluations: Optional[int] = None
@@ -99,6 +101,12 @@ class NestOptions:
     engine: str = "own"
     chord_tol: float = 0.05
     tolerance: float = 1e-3
+
+    def part_rotations(self, own: Optional[List[float]]) -> Optional[List[float]]:
+        """The allowed angles of a part under these options (None = any angle)."""
+        if self.free_rotation:
+            return None
+        return self.rotations_override if self.rotations_override is not None else own
 
     def validate(self) -> None:
         self.container.validate()

@@ -41,6 +41,7 @@ class PieceType:
     angles: List[float] = field(default_factory=lambda: [0.0])
     mirror: bool = False
     grade: int = 0
+    tol: float = 0.0          # chord error of ``outer`` / ``holes`` (mm), covered by the growth
 
     @property
     def area(self) -> float:
@@ -58,6 +59,7 @@ class Variant:
     outer: IntPath
     holes: List[IntPath]
     bbox: tuple  # (xmin, ymin, xmax, ymax) of ``outer``, grid units
+    core: IntPath = field(default_factory=list)   # true outline grown by one grid unit
 
 
 def _area(a: np.ndarray) -> float:
@@ -83,21 +85,35 @@ def allowed_angles(rotations: Optional[Sequence[float]], step: float) -> List[fl
     return out or [0.0]
 
 
+def nesting_tolerance(part: Part, chord_tol: float) -> float:
+    """Chord tolerance (mm) for the engine's copy of a part with arcs: the finer
+    of 0.2 % of its size and 0.5 mm, never below ``chord_tol`` (0 when the part
+    has no arcs).  The engine grows the shape by this much, so the coarse
+    polygon still covers the true one."""
+    from ..geometry import ArcSeg
+    if not any(isinstance(s, ArcSeg) for c in part.contours() for s in c.segments):
+        return 0.0                    # straight segments and polylines are exact
+    x0, y0, x1, y1 = part.outer.bbox
+    return max(chord_tol, min(0.5, 0.002 * max(x1 - x0, y1 - y0)))
+
+
 def piece_from_part(part: Part, chord_tol: float, step: float,
-                    rotations_override: Optional[List[float]] = None,
+                    rotations: Optional[List[float]] = None,
                     mirror_override: Optional[bool] = None) -> PieceType:
-    """Flatten a part's contours (arcs within ``chord_tol`` mm)."""
-    outer = part.outer.points(chord_tol)
+    """Flatten a part's contours for the engine (see :func:`nesting_tolerance`);
+    ``rotations`` are the allowed angles (None = any, every ``step`` degrees)."""
+    tol = nesting_tolerance(part, chord_tol)
+    outer = part.outer.points(tol or chord_tol)
     if len(outer) < 3 or abs(signed_area(outer)) <= 0:
         raise InputError(f"part {part.id}: outer contour has no area, cannot be nested")
-    holes = [_ring(h.points(chord_tol), ccw=False) for h in part.holes if len(h.points(chord_tol)) >= 3]
-    rots = rotations_override if rotations_override is not None else part.rotations
+    holes = [_ring(h.points(tol or chord_tol), ccw=False) for h in part.holes
+             if len(h.points(tol or chord_tol)) >= 3]
     if part.quantity < 0:
         raise InputError(f"part {part.id}: quantity {part.quantity} is negative")
     return PieceType(key=part.id, outer=_ring(outer, ccw=True), holes=holes,
-                     quantity=int(part.quantity), angles=allowed_angles(rots, step),
+                     quantity=int(part.quantity), angles=allowed_angles(rotations, step),
                      mirror=part.mirror_allowed if mirror_override is None else mirror_override,
-                     grade=int(part.grade))
+                     grade=int(part.grade), tol=tol)
 
 
 def transform_ring(ring: np.ndarray, angle: float, mirrored: bool, dx: float = 0.0,
@@ -120,26 +136,63 @@ def to_grid(ring: np.ndarray, scale: float) -> IntPath:
 
 
 def offset_paths(paths: List[IntPath], delta: float, arc_tol: float) -> List[IntPath]:
-    """Grow (delta > 0) or shrink a set of closed grid paths with round joins."""
+    """Grow (delta > 0) or shrink a set of closed grid paths: round joins for a
+    real spacing, mitred joins for the few-unit rounding guard (no tiny arcs)."""
     if delta == 0:
         return [list(p) for p in paths]
+    joint = pyclipper.JT_ROUND if abs(delta) > 4 * max(arc_tol, 2.0) else pyclipper.JT_MITER
     off = pyclipper.PyclipperOffset(2.0, max(arc_tol, 0.25))
-    off.AddPaths(paths, pyclipper.JT_ROUND, pyclipper.ET_CLOSEDPOLYGON)
-    return off.Execute(delta)
+    off.AddPaths([pyclipper.CleanPolygon(p, 2.0) for p in paths], joint,
+                 pyclipper.ET_CLOSEDPOLYGON)
+    return [pyclipper.CleanPolygon(p, 2.0) for p in off.Execute(delta)]
+
+
+def _same_shape(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
+    """Are two rings the same shape up to translation (within ``tol`` mm)?"""
+    from shapely.geometry import Polygon
+    pa = Polygon(a - a.min(axis=0))
+    pb = Polygon(b - b.min(axis=0))
+    if abs(pa.area - pb.area) > tol * pa.length + 1e-9 * pa.area:
+        return False
+    return pa.symmetric_difference(pb).area <= 2.0 * tol * pa.length + 1e-9 * pa.area
+
+
+def distinct_orientations(t: PieceType) -> List[tuple]:
+    """(angle, mirrored) pairs of ``t`` whose shapes differ: a rectangle turned
+    180 degrees or a circle turned any angle is the same shape moved, so only
+    the first such orientation is kept (the kept one covers the true shape;
+    dropping the others only removes duplicate work)."""
+    keep: List[tuple] = []
+    shapes: List[np.ndarray] = []
+    tol = t.tol if t.tol > 0 else 1e-9
+    for m in ([False, True] if t.mirror else [False]):
+        for ang in t.angles:
+            ring = transform_ring(t.outer, ang, m)
+            if t.holes or not any(_same_shape(ring, s, tol) for s in shapes):
+                keep.append((ang, m))
+                shapes.append(ring)
+    return keep
 
 
 def make_variants(types: Sequence[PieceType], scale: float, half_gap: float,
                   arc_tol: float) -> List[Variant]:
-    """Every allowed orientation of every type, inflated by ``half_gap`` mm plus one
-    grid unit (see module doc)."""
+    """Every allowed orientation of every type, inflated by ``half_gap`` mm plus
+    twice the type's chord tolerance (flattening and round-join sag) plus one
+    grid unit (see module doc); holes shrunk alike."""
     out: List[Variant] = []
-    grow = half_gap * scale + 1.0
     for ti, t in enumerate(types):
-        mirrors = [False, True] if t.mirror else [False]
-        for m in mirrors:
-            for ang in t.angles:
+        # round joins of the spacing offset cut corners by at most join_tol
+        join_tol = max(arc_tol, t.tol, 0.01 * half_gap)
+        sag = t.tol + (join_tol if half_gap > 0 else 0.0)
+        grow = (half_gap + sag) * scale + 1.0
+        core_grow = t.tol * scale + 1.0
+        for ang, m in distinct_orientations(t):
                 outer = to_grid(transform_ring(t.outer, ang, m), scale)
-                grown = offset_paths([outer], grow, arc_tol * scale)
+                core = offset_paths([outer], core_grow, join_tol * scale)
+                core = max(core, key=lambda p: abs(pyclipper.Area(p)))
+                if pyclipper.Orientation(core) is False:
+                    core = core[::-1]
+                grown = offset_paths([outer], grow, join_tol * scale)
                 grown = max(grown, key=lambda p: abs(pyclipper.Area(p)))
                 if pyclipper.Orientation(grown) is False:
                     grown = grown[::-1]
@@ -148,11 +201,11 @@ def make_variants(types: Sequence[PieceType], scale: float, half_gap: float,
                     hp = to_grid(transform_ring(h, ang, m), scale)
                     if not pyclipper.Orientation(hp):
                         hp = hp[::-1]
-                    for sh in offset_paths([hp], -grow, arc_tol * scale):
+                    for sh in offset_paths([hp], -grow, join_tol * scale):
                         if abs(pyclipper.Area(sh)) > 0:
                             holes.append(sh if pyclipper.Orientation(sh) else sh[::-1])
                 xs = [p[0] for p in grown]
                 ys = [p[1] for p in grown]
                 out.append(Variant(len(out), ti, ang, m, grown, holes,
-                                   (min(xs), min(ys), max(xs), max(ys))))
+                                   (min(xs), min(ys), max(xs), max(ys)), core))
     return out

@@ -1,0 +1,279 @@
+"""``leathercut nest``: nest recognised parts (or an ESICUP instance) on sheets,
+a strip or leather hides.  Documented in docs/CLI.md (section ``nest``)."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+from typing import Any, Dict, List, Optional
+
+from . import Report, add_common_options
+from ..core.errors import InputError
+
+_EARLIER = ("inspect_cmd", "recognise_cmd")
+
+
+def _earlier_modules():
+    """Earlier stages' CLI modules that exist (they are added by other issues)."""
+    mods = []
+    for name in _EARLIER:
+        try:
+            mods.append(importlib.import_module(f".{name}", __package__))
+        except ImportError:
+            continue
+    return mods
+
+
+def _size(text: str):
+    try:
+        w, h = (float(v) for v in text.lower().replace("*", "x").split("x"))
+        if w <= 0 or h <= 0:
+            raise ValueError
+        return w, h
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"bad sheet size {text!r}: use WxH in mm, e.g. 1000x600")
+
+
+def _positive(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if v <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
+    return v
+
+
+def _non_negative(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0: {text!r}")
+    return v
+
+
+def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
+    """Nesting options; with ``primary`` False the clashing ones get ``--nest-``."""
+    pre = "" if primary else "nest-"
+    g = parser.add_argument_group("nesting")
+    box = g.add_mutually_exclusive_group()
+    box.add_argument("--sheet", dest="nest_sheet", type=_size, metavar="WxH",
+                     help="nest on rectangular sheets W x H mm (new sheets as needed)")
+    box.add_argument("--strip", dest="nest_strip", type=_positive, metavar="W",
+                     help="nest on a strip W mm wide with open length (minimise the length)")
+    box.add_argument("--hide", dest="nest_hide", metavar="HIDE.dxf",
+                     help="nest on the hide(s) in this DXF: layers HIDE (outline), DEFECT, ZONE_<grade>")
+    if primary:
+        box.add_argument("--esicup", dest="nest_esicup", metavar="FILE.json",
+                         help="nest an ESICUP strip-packing instance (jagua-rs JSON) instead of a DXF")
+    g.add_argument("--sheets", dest="nest_sheets", type=int, metavar="N",
+                   help="with --sheet: use at most N sheets and report what does not fit")
+    g.add_argument("--spacing", dest="nest_spacing", type=_non_negative, default=0.0, metavar="MM",
+                   help="minimum gap between parts in mm (knife width / kerf; default 0)")
+    g.add_argument("--margin", dest="nest_margin", type=_non_negative, default=0.0, metavar="MM",
+                   help="minimum distance from parts to the container edge and defects in mm (default 0)")
+    g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S",
+                   help="allowed rotations for every part: any, a list like 0,180, or step:90 "
+                        "(default: each part's own setting; ESICUP: the instance's)")
+    g.add_argument("--rotation-step", dest="nest_rotation_step", type=_positive, default=30.0,
+                   metavar="DEG", help="angle step tried for parts that may turn freely (default 30)")
+    g.add_argument("--mirror", dest="nest_mirror", action="store_true",
+                   help="allow mirrored copies of every part")
+    g.add_argument("--copies", dest="nest_copies", type=int, default=None, metavar="N",
+                   help="nest N copies of every recognised part (default: each part's quantity)")
+    g.add_argument(f"--{pre}time", dest="nest_time", type=_non_negative, default=10.0, metavar="S",
+                   help="seconds of improvement search after the first layout (default 10; 0 = none)")
+    g.add_argument(f"--{pre}evaluations", dest="nest_evaluations", type=int, default=None, metavar="N",
+                   help="stop each worker after N layouts: same seed, same result on any machine")
+    g.add_argument(f"--{pre}workers", dest="nest_workers", type=int, default=None, metavar="N",
+                   help="worker processes (default: all cores)")
+    g.add_argument(f"--{pre}engine", dest="nest_engine", choices=["own", "sparrow"], default="own",
+                   help="own (default; every container and constraint) or sparrow "
+                        "(spyrrow, strips only, no part-in-part)")
+    g.add_argument("--layout-out", dest="nest_layout_out", metavar="FILE.json",
+                   help="write the placed outlines as layout JSON")
+    g.add_argument(f"--{pre}dxf-out", dest="nest_dxf_out", metavar="FILE.dxf",
+                   help="write the nested drawing as DXF")
+    g.add_argument(f"--{pre}svg-out", dest="nest_svg_out", metavar="FILE.svg",
+                   help="write a picture of the layout as SVG")
+
+
+def options_from_args(args: argparse.Namespace):
+    """NestOptions from parsed arguments, or None when no container was given."""
+    from ..core.nesting import ContainerSpec, NestOptions, parse_rotations, read_hide_dxf
+
+    if getattr(args, "nest_sheet", None):
+        w, h = args.nest_sheet
+        spec = ContainerSpec.sheet(w, h, args.nest_sheets)
+    elif getattr(args, "nest_strip", None):
+        spec = ContainerSpec.strip(args.nest_strip)
+    elif getattr(args, "nest_hide", None):
+        if not os.path.isfile(args.nest_hide):
+            raise InputError("no such file", source=args.nest_hide)
+        spec = ContainerSpec.hide(*read_hide_dxf(args.nest_hide))
+    elif getattr(args, "nest_esicup", None):
+        spec = ContainerSpec.strip(1.0)       # replaced by the instance's strip height
+    else:
+        return None
+    if args.nest_sheets is not None and not args.nest_sheet:
+        raise InputError("--sheets needs --sheet WxH")
+    rots_override: Optional[List[float]] = None
+    step = args.nest_rotation_step
+    free = False
+    if args.nest_rotations:
+        rots_override, st = parse_rotations(args.nest_rotations)
+        free = rots_override is None
+        if st is not None:
+            step = st
+    opts = NestOptions(container=spec, spacing=args.nest_spacing, margin=args.nest_margin,
+                       rotation_step=step, rotations_override=rots_override, free_rotation=free,
+                       mirror_override=True if args.nest_mirror else None,
+                       time_budget=args.nest_time, max_evaluations=args.nest_evaluations,
+                       seed=getattr(args, "seed", 1), workers=args.nest_workers,
+                       engine=args.nest_engine)
+    opts.validate()
+    return opts
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "nest", help="nest parts on sheets, a strip or hides (true shapes, holes, defects)",
+        description="Nest the recognised parts of FILE (or an ESICUP instance) on sheets, "
+                    "a strip or leather hides with defects and quality zones.")
+    p.add_argument("file", metavar="FILE", nargs="?", help="DXF drawing with the parts "
+                   "(not needed with --esicup)")
+    add_common_options(p)
+    for mod in _earlier_modules():
+        mod.add_options(p, primary=False)
+    add_options(p, primary=True)
+    p.set_defaults(func=run)
+
+
+def _parts_from_args(args, opts):
+    """(parts, source label, findings) from a DXF or an ESICUP instance."""
+    from ..core.nesting import ContainerSpec
+    if getattr(args, "nest_esicup", None):
+        from ..core.nesting.esicup import read_esicup
+        if args.file:
+            raise InputError("give either FILE or --esicup, not both")
+        inst = read_esicup(args.nest_esicup)
+        opts.container = ContainerSpec.strip(inst.strip_height)
+        return inst.parts, args.nest_esicup, []
+    if not args.file:
+        raise InputError("no drawing given: leathercut nest FILE.dxf --sheet WxH (or --esicup FILE.json)")
+    if not os.path.isfile(args.file):
+        raise InputError("no such file", source=args.file)
+    from ..core.job import JobOptions, load_and_recognise
+    jo = JobOptions()
+    for mod in _earlier_modules():
+        val = mod.options_from_args(args)
+        if mod.__name__.endswith("inspect_cmd"):
+            jo.import_ = val
+        else:
+            jo.recognise = val
+    drawing, rec = load_and_recognise(args.file, jo)
+    parts = rec.active_parts()
+    if not parts:
+        raise InputError("no closed parts recognised in the drawing", source=args.file)
+    return parts, args.file, list(drawing.findings) + list(rec.findings)
+
+
+def _bar():
+    if not sys.stderr.isatty():
+        return None
+    state = {"last": -1}
+
+    def bar(frac: float, msg: str) -> bool:
+        pct = int(frac * 100)
+        if pct != state["last"]:
+            state["last"] = pct
+            sys.stderr.write(f"\r[{'#' * (pct // 4):<25}] {pct:3d}% {msg[:50]:<50}")
+            if pct >= 100:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+        return True
+    return bar
+
+
+def run(args: argparse.Namespace) -> Report:
+    from ..core.nesting import nest
+    from ..core.nesting import outputs
+
+    opts = options_from_args(args)
+    if opts is None:
+        raise InputError("no container: give --sheet WxH, --strip W, --hide HIDE.dxf or --esicup FILE.json")
+    parts, source, findings = _parts_from_args(args, opts)
+    if args.nest_copies is not None:
+        if args.nest_copies < 1:
+            raise InputError(f"--copies must be >= 1, got {args.nest_copies}")
+        for p in parts:
+            p.quantity = args.nest_copies
+    layout = nest(parts, opts, _bar() if not args.json else None)
+    written: Dict[str, str] = {}
+    for key, path, fn in (("layout", args.nest_layout_out, outputs.write_layout_json),
+                          ("dxf", args.nest_dxf_out, outputs.write_dxf),
+                          ("svg", args.nest_svg_out, outputs.write_svg)):
+        if path:
+            try:
+                fn(path, parts, layout)
+            except OSError as exc:
+                raise InputError(f"cannot write: {exc.strerror}", source=path) from None
+            written[key] = path
+    data = report_dict(source, opts, layout, findings)
+    data["outputs"] = written
+    return Report(data=data, text=report_text(data))
+
+
+def report_dict(source: str, opts, layout, findings) -> Dict[str, Any]:
+    m = dict(layout.metrics)
+    spec = opts.container
+    cont: Dict[str, Any] = {"kind": spec.kind}
+    if spec.kind == "sheet":
+        cont.update({"width_mm": spec.width, "height_mm": spec.height, "count": spec.count})
+    elif spec.kind == "strip":
+        cont.update({"width_mm": spec.height})
+    else:
+        cont.update({"hides": [c.id for c in spec.hides]})
+    return {
+        "file": source,
+        "container": cont,
+        "engine": opts.engine,
+        "spacing_mm": opts.spacing,
+        "margin_mm": opts.margin,
+        "time_budget_s": opts.time_budget,
+        "seed": opts.seed,
+        "metrics": {k: v for k, v in m.items() if k != "containers"},
+        "containers": m.get("containers", []),
+        "placements": [{"part": p.part_id, "copy": p.copy, "container": p.container,
+                        "x": round(p.x, 6), "y": round(p.y, 6), "angle": p.angle,
+                        "mirrored": p.mirrored} for p in layout.placements],
+        "unplaced": [{"part": pid, "copy": k} for pid, k in layout.unplaced],
+        "findings": [f.to_json() for f in list(findings) + list(layout.findings)],
+    }
+
+
+def report_text(d: Dict[str, Any]) -> str:
+    m = d["metrics"]
+    lines = [f"{d['file']}: {m.get('placed', 0)} placed, {m.get('unplaced', 0)} unplaced "
+             f"({d['engine']} engine, {m.get('time_s', 0):.1f} s)"]
+    kind = d["container"]["kind"]
+    if kind == "strip":
+        lines.append(f"strip {m['strip_width_mm']:g} mm wide: length {m['strip_length_mm']:.3f} mm, "
+                     f"density {100 * m['density']:.2f} %")
+    else:
+        lines.append(f"utilisation {100 * m.get('utilisation', 0):.2f} %"
+                     + (f" (gross {100 * m['utilisation_gross']:.2f} %)" if "utilisation_gross" in m else ""))
+        for c in d["containers"]:
+            lines.append(f"  {c['id']}: {c['parts']} parts, utilisation {100 * c['utilisation']:.2f} %")
+    if d["unplaced"]:
+        lines.append("unplaced: " + ", ".join(f"{u['part']}#{u['copy']}" for u in d["unplaced"][:20]))
+    for f in d["findings"]:
+        if f["level"] != "info":
+            lines.append(f"{f['level']}: {f['message']}")
+    for k, v in d.get("outputs", {}).items():
+        lines.append(f"wrote {k}: {v}")
+    return "\n".join(lines)

@@ -1,0 +1,152 @@
+"""``leathercut post``: write the machine file of a drawing's cut job.
+
+Runs import, recognition, nesting (when a container is given) and planning
+with the same options as the earlier verbs, then writes G-code, HP-GL or DXF
+for a machine profile.  The safety check runs before anything is written: a
+refused job leaves no output file.  Documented in docs/CLI.md (``post``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+from typing import Any, List
+
+from . import Report, add_common_options
+from ..core.errors import InputError
+
+DEFAULT_MACHINE = "grblhal_tangential"
+FORMATS = ("gcode", "hpgl", "dxf")
+_EARLIER = ("inspect_cmd", "recognise_cmd", "nest_cmd", "plan_cmd")
+
+
+def earlier_modules() -> List[Any]:
+    """CLI modules of the earlier stages that exist."""
+    mods = []
+    for name in _EARLIER:
+        try:
+            mods.append(importlib.import_module(f".{name}", __package__))
+        except ImportError:
+            continue
+    return mods
+
+
+def _non_negative(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if v < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0: {text!r}")
+    return v
+
+
+def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
+    """Post-processing options (``--machine`` is shared with ``send``)."""
+    g = parser.add_argument_group("post-processing")
+    g.add_argument("--machine", dest="post_machine", default=DEFAULT_MACHINE,
+                   metavar="NAME_OR_FILE",
+                   help=f"machine profile name or JSON file (default {DEFAULT_MACHINE}; "
+                        "see docs/MACHINES.md)")
+    if not primary:
+        return
+    g.add_argument("--format", dest="post_format", choices=FORMATS, default="gcode",
+                   help="output format (default gcode)")
+    g.add_argument("-o", "--output", dest="post_output", required=True, metavar="OUT",
+                   help="file to write (not created when the safety check refuses the job)")
+    g.add_argument("--line-numbers", dest="post_line_numbers", action="store_true",
+                   default=None, help="G-code: N word on every block")
+    g.add_argument("--overcut", dest="post_overcut", type=_non_negative, metavar="MM",
+                   help="cut this many mm past the start of closed contours "
+                        "(default: the profile's overcut)")
+
+
+def options_from_args(args: argparse.Namespace):
+    from ..post.gcode import ExportOptions
+
+    return ExportOptions(line_numbers=getattr(args, "post_line_numbers", None),
+                         overcut=getattr(args, "post_overcut", None))
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("post", help="write G-code, HP-GL or DXF of a drawing's cut job",
+                       description="Import, recognise, nest (if a container is given) and plan "
+                                   "FILE, then write the job for a machine profile. The job is "
+                                   "checked against the table limits, feeds and the dialect's "
+                                   "words first; a refused job writes nothing.")
+    p.add_argument("file", metavar="FILE", help="DXF drawing to cut")
+    add_common_options(p)
+    for mod in earlier_modules():
+        mod.add_options(p, primary=False)
+    add_options(p, primary=True)
+    p.set_defaults(func=run)
+
+
+def plan_drawing(args: argparse.Namespace, profile) -> Any:
+    """Run the earlier stages on ``args.file`` with their CLI options; returns
+    the JobResult (``.plan`` is the CutPlan)."""
+    from ..core.job import JobOptions, run_job
+
+    if not os.path.isfile(args.file):
+        raise InputError("no such file", source=args.file)
+    opts = JobOptions()
+    for mod in earlier_modules():
+        name = mod.__name__.rsplit(".", 1)[-1]
+        if name == "plan_cmd":
+            try:
+                opts.plan = mod.options_from_args(args, profile)
+            except TypeError:
+                opts.plan = mod.options_from_args(args)
+        else:
+            attr = {"inspect_cmd": "import_", "recognise_cmd": "recognise",
+                    "nest_cmd": "nest"}[name]
+            setattr(opts, attr, mod.options_from_args(args))
+    return run_job(args.file, opts)
+
+
+def render(plan, profile, fmt: str, options) -> str:
+    """The output text for ``fmt`` (safety-checked; raises SafetyError)."""
+    from ..post import dxf_out, gcode, hpgl
+
+    if fmt == "gcode":
+        return gcode.export(plan, profile, options)
+    if fmt == "hpgl":
+        return hpgl.export(plan, profile, options)
+    return dxf_out.export(plan, profile)
+
+
+def run(args: argparse.Namespace) -> Report:
+    from ..post.profiles import load_profile
+
+    profile = load_profile(args.post_machine)
+    fmt = args.post_format
+    if fmt == "gcode" and not profile.is_gcode:
+        raise InputError(f"profile {profile.name} is for {profile.dialect}; use --format "
+                         f"{'hpgl' if profile.dialect == 'hpgl' else 'dxf'}", source=args.file)
+    if fmt == "hpgl" and profile.dialect != "hpgl":
+        raise InputError(f"profile {profile.name} is for {profile.dialect}, not HP-GL",
+                         source=args.file)
+    result = plan_drawing(args, profile)
+    text = render(result.plan, profile, fmt, options_from_args(args))
+    out = args.post_output
+    tmp = out + ".part"
+    try:
+        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, out)
+    except OSError as exc:
+        raise InputError(f"cannot write: {exc.strerror}", source=out)
+    plan = result.plan
+    n_lines = text.count("\n")
+    data = {
+        "file": args.file, "machine": profile.name, "dialect": profile.dialect,
+        "format": fmt, "output": out, "bytes": len(text.encode("ascii")), "lines": n_lines,
+        "items": len(plan.items), "segments": sum(len(i.segments) for i in plan.items),
+        "cut_length_mm": round(sum(i.length for i in plan.items), 3),
+        "findings": [f.to_json() for f in result.findings],
+    }
+    text_out = (f"{args.file}: {data['items']} items, {data['segments']} segments, "
+                f"cut {data['cut_length_mm']:.1f} mm -> {out} ({fmt}, {profile.name}, "
+                f"{n_lines} lines)")
+    return Report(data=data, text=text_out)

@@ -1,0 +1,191 @@
+"""``leathercut recognise FILE``: parts, holes, lead-ins, open chains and flags.
+
+Runs the import with its options, then recognition, and reports what was found
+(schema in docs/CLI.md, section ``recognise``).  Lengths mm, areas mm^2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Any, Dict, FrozenSet, List
+
+from ..core.geometry import Segment
+from ..core.model import Contour, Recognition
+from . import Report, add_common_options
+
+
+def _tol(value: str) -> float:
+    try:
+        v = float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {value!r}") from None
+    if not math.isfinite(v) or v < 0:
+        raise argparse.ArgumentTypeError(f"must be a length >= 0 mm, got {value}")
+    return v
+
+
+def _ids(value: str) -> FrozenSet[str]:
+    out = set()
+    for part in value.replace(";", ",").split(","):
+        p = part.strip().upper()
+        if not p:
+            continue
+        if p[0] not in "CP" or not p[1:].isdigit():
+            raise argparse.ArgumentTypeError(f"not a contour or part id (C3, P2): {part!r}")
+        out.add(p)
+    return frozenset(out)
+
+
+def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
+    """Recognition options; ``--include``/``--exclude`` become
+    ``--recognise-include``/``--recognise-exclude`` on later verbs (not primary)."""
+    g = parser.add_argument_group("recognition")
+    g.add_argument("--join-tol", dest="recognise_join_tol", type=_tol, default=0.01, metavar="MM",
+                   help="end points closer than this are joined (default 0.01 mm)")
+    g.add_argument("--gap-tol", dest="recognise_gap_tol", type=_tol, default=0.5, metavar="MM",
+                   help="open outlines whose gaps are all at most this long are flagged "
+                        "'under' with bridging segments as the fix (default 0.5 mm)")
+    g.add_argument("--close-gaps", dest="recognise_close_gaps", action="store_true",
+                   help="apply the proposed bridges: flagged open outlines become contours")
+    pre = "" if primary else "recognise-"
+    g.add_argument(f"--{pre}include", dest="recognise_include", type=_ids, default=frozenset(),
+                   metavar="IDS", help="comma-separated contour/part ids to cut even if "
+                                       "flagged over-recognised (e.g. C5,C9)")
+    g.add_argument(f"--{pre}exclude", dest="recognise_exclude", type=_ids, default=frozenset(),
+                   metavar="IDS", help="comma-separated contour/part ids not to cut")
+    g.add_argument("--chord-tol", dest="recognise_chord_tol", type=_tol, default=0.01,
+                   metavar="MM", help="ellipses and splines become polylines within this "
+                                      "deviation (default 0.01 mm)")
+
+
+def options_from_args(args: argparse.Namespace):
+    """RecogniseOptions from parsed arguments (validated)."""
+    from ..core.recognition import RecogniseOptions
+
+    opts = RecogniseOptions(join_tol=args.recognise_join_tol, gap_tol=args.recognise_gap_tol,
+                            close_gaps=args.recognise_close_gaps,
+                            include=args.recognise_include, exclude=args.recognise_exclude,
+                            chord_tol=args.recognise_chord_tol)
+    opts.validate()
+    return opts
+
+
+def _import_cmd():
+    try:
+        from . import inspect_cmd
+    except ImportError:  # the import verb is not installed in this checkout
+        return None
+    return inspect_cmd
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "recognise", help="find parts, holes, lead-ins, open chains and doubtful contours",
+        description="Recognise closed part contours (with holes and islands), lead-ins / "
+                    "lead-outs and open chains in a DXF drawing; flag contours that are "
+                    "probably not parts (over) and outlines left open by small gaps (under).")
+    p.add_argument("file", metavar="FILE", help="DXF drawing")
+    add_common_options(p)
+    imp = _import_cmd()
+    if imp is not None:
+        imp.add_options(p, primary=False)
+    add_options(p, primary=True)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> Report:
+    from ..core.job import JobOptions, load_and_recognise
+
+    imp = _import_cmd()
+    options = JobOptions(import_=imp.options_from_args(args) if imp is not None else None,
+                         recognise=options_from_args(args))
+    drawing, rec = load_and_recognise(args.file, options)
+    data = recognition_json(rec, args.file)
+    data["findings"] = [f.to_json() for f in list(drawing.findings) + list(rec.findings)]
+    return Report(data=data, text=recognition_text(rec, args.file))
+
+
+# ----------------------------------------------------------------------
+def _r(v: float) -> float:
+    return round(float(v), 4)
+
+
+def _pt(p) -> List[float]:
+    return [_r(p[0]), _r(p[1])]
+
+
+def _seg_json(s: Segment) -> Dict[str, Any]:
+    return {"start": _pt(s.start), "end": _pt(s.end), "length": _r(s.length)}
+
+
+def _area(c: Contour) -> float:
+    """Exact area (mm^2) for lines and arcs; polyline area for flattened curves."""
+    from ..core.recognition.from_part import signed_path_area
+    return abs(signed_path_area(c.segments))
+
+
+def _contour_json(c: Contour) -> Dict[str, Any]:
+    return {"id": c.id, "area": _r(_area(c)), "length": _r(c.length),
+            "bbox": [_r(v) for v in c.bbox], "segments": len(c.segments),
+            "shared": list(c.shared), "layer": c.layer}
+
+
+def recognition_json(rec: Recognition, path: str) -> Dict[str, Any]:
+    """The ``--json`` report of ``leathercut recognise`` (see docs/CLI.md)."""
+    parts = []
+    for p in rec.parts:
+        parts.append({
+            "id": p.id, "name": p.name, "excluded": p.excluded, "quantity": p.quantity,
+            "rotations": p.rotations, "parent": p.parent_id,
+            "net_area": _r(_area(p.outer) - sum(_area(h) for h in p.holes)),
+            "outer_length": _r(p.outer.length),
+            "bbox": [_r(v) for v in p.outer.bbox],
+            "outer": _contour_json(p.outer),
+            "holes": [_contour_json(h) for h in p.holes],
+            "lead_ins": [{"id": li.id, "contour": li.contour_id, "role": li.role,
+                          "start": _pt(li.start), "end": _pt(li.end), "length": _r(li.length)}
+                         for li in p.lead_ins],
+            "marks": [{"kind": m.kind, "position": _pt(m.position)} for m in p.marks],
+        })
+    return {
+        "input": path,
+        "units": "mm",
+        "counts": {
+            "parts": len(rec.parts),
+            "parts_excluded": sum(1 for p in rec.parts if p.excluded),
+            "holes": sum(len(p.holes) for p in rec.parts),
+            "lead_ins": sum(len(p.lead_ins) for p in rec.parts),
+            "open_chains": len(rec.open_chains),
+            "flags_over": sum(1 for f in rec.flags if f.kind == "over"),
+            "flags_under": sum(1 for f in rec.flags if f.kind == "under"),
+        },
+        "parts": parts,
+        "open_chains": [{"id": c.id, "length": _r(c.length), "start": _pt(c.start),
+                         "end": _pt(c.end), "layer": c.layer, "segments": len(c.segments)}
+                        for c in rec.open_chains],
+        "flags": [{"id": f.id, "kind": f.kind, "ids": list(f.ids),
+                   "gap": None if f.gap is None else round(f.gap, 6), "reason": f.reason,
+                   "fix": [_seg_json(s) for s in f.fix], "accepted": f.accepted}
+                  for f in rec.flags],
+    }
+
+
+def recognition_text(rec: Recognition, path: str) -> str:
+    """Human summary: counts, then one line per flag."""
+    active = rec.active_parts()
+    lines = [f"{path}: {len(active)} parts to cut"
+             + (f" ({len(rec.parts) - len(active)} excluded)" if len(active) != len(rec.parts)
+                else "")
+             + f", {sum(len(p.holes) for p in active)} holes, "
+             f"{sum(len(p.lead_ins) for p in active)} lead-ins, "
+             f"{len(rec.open_chains)} open chains, {len(rec.flags)} flags"]
+    for f in rec.flags:
+        gap = f" gap {f.gap:.4g} mm" if f.gap is not None else ""
+        state = {None: "undecided", True: "accepted", False: "rejected"}[f.accepted]
+        lines.append(f"  {f.id} {f.kind:5s} {','.join(f.ids)}{gap} [{state}]: {f.reason}")
+    for fd in rec.findings:
+        if fd.level != "info":
+            lines.append(f"  {fd.level}: {fd.message}")
+    return "\n".join(lines)
+

@@ -1,0 +1,180 @@
+"""``leathercut send``: stream a job live to a GRBL-family controller.
+
+FILE is a drawing (``.dxf``: planned and posted like ``leathercut post``) or a
+ready G-code file (``.nc``, ``.ngc``, ``.gcode``, ``.tap``).  Every
+acknowledged line goes into the journal; after a stop the report names the
+segment to resume from, and ``--resume-from`` continues there.  Ctrl-C stops
+the job safely (feed hold, reset, knife up); SIGUSR1 toggles pause/resume.
+Documented in docs/CLI.md (``send``) and docs/LINK.md.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import signal
+import sys
+import time
+
+from . import Report, add_common_options
+from ..core.errors import InputError
+from . import post_cmd
+
+GCODE_EXT = (".nc", ".ngc", ".gcode", ".tap", ".cnc", ".txt")
+
+
+def _positive(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if v <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
+    return v
+
+
+def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
+    g = parser.add_argument_group("live link")
+    g.add_argument("--port", dest="send_port", required=True, metavar="URL",
+                   help="pyserial URL: /dev/ttyUSB0, COM3, socket://host:port, rfc2217://..., "
+                        "or emulator:grbl / emulator:grblhal for the built-in fake controller")
+    g.add_argument("--baud", dest="send_baud", type=int, default=None, metavar="BAUD",
+                   help="baud rate (default: the profile's, 115200)")
+    g.add_argument("--check", dest="send_check", action="store_true",
+                   help="run the whole job in the controller's check mode ($C) first; "
+                        "stream only when it passes")
+    g.add_argument("--mode", dest="send_mode", choices=("send-response", "char-count"),
+                   default="send-response",
+                   help="send-response (one line, wait for ok) or char-count (fill the "
+                        "controller's receive buffer; default send-response)")
+    g.add_argument("--resume-from", dest="send_resume", metavar="SEGMENT",
+                   help="continue an interrupted job at segment ITEM:SEG (e.g. 3:5), or 'auto' "
+                        "for the first segment the journal does not show complete")
+    g.add_argument("--journal", dest="send_journal", metavar="PATH",
+                   help="job journal (default FILE.journal next to the job)")
+    g.add_argument("--no-home", dest="send_no_home", action="store_true",
+                   help="never send $H; refuse when the controller is locked in Alarm")
+    g.add_argument("--link-timeout", dest="send_link_timeout", type=_positive, default=3.0,
+                   metavar="S", help="no status reply for S seconds = link lost (default 3)")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("send", help="stream a job live to a GRBL / grblHAL controller",
+                       description="Stream FILE (a DXF, planned and posted like 'post', or a "
+                                   "ready .nc G-code file) to a GRBL-family controller, "
+                                   "journaling every acknowledged line; stop safely on any "
+                                   "error, alarm or lost link; resume from a segment.")
+    p.add_argument("file", metavar="FILE", help="DXF drawing or G-code file (.nc/.ngc/.gcode)")
+    add_common_options(p)
+    for mod in post_cmd.earlier_modules():
+        mod.add_options(p, primary=False)
+    post_cmd.add_options(p, primary=False)
+    add_options(p, primary=True)
+    p.set_defaults(func=run)
+
+
+def load_job(args: argparse.Namespace, profile):
+    """The SendJob for FILE: G-code files as they are (safety-checked), drawings
+    planned and posted for ``profile``."""
+    from ..post import gcode, safety
+    from ..post.link import job_from_file, job_from_program
+
+    if not os.path.isfile(args.file):
+        raise InputError("no such file", source=args.file)
+    if args.file.lower().endswith(GCODE_EXT):
+        job = job_from_file(args.file)
+        safety.check_program(job.source, profile, args.file)
+        return job
+    result = post_cmd.plan_drawing(args, profile)
+    prog = gcode.build_program(result.plan, profile)
+    name = os.path.splitext(os.path.basename(args.file))[0] + ".nc"
+    return job_from_program(name, prog)
+
+
+class TerminalProgress:
+    """One self-overwriting status line on stderr, at most 10 updates per second."""
+
+    def __init__(self, enabled: bool):
+        self.enabled = enabled and sys.stderr.isatty()
+        self.last = 0.0
+
+    def __call__(self, info) -> None:
+        if not self.enabled:
+            return
+        now = time.monotonic()
+        if now - self.last < 0.1 and info["acked"] != info["total"]:
+            return
+        self.last = now
+        sys.stderr.write(f"\r{info['percent']:5.1f}%  {info['acked']}/{info['total']} lines  "
+                         f"{info['state'] or '-':8s} segment {info['segment'] or '-':8s}")
+        sys.stderr.flush()
+
+    def done(self) -> None:
+        if self.enabled:
+            sys.stderr.write("\n")
+
+
+def _open_port(url: str, profile):
+    """(url to open, emulator or None): ``emulator:grbl``/``emulator:grblhal``
+    start the built-in fake controller with the profile's axes."""
+    if not url.startswith("emulator:"):
+        return url, None
+    from ..post.emulator import FakeController
+
+    flavour = url.split(":", 1)[1] or "grblhal"
+    if flavour not in ("grbl", "grblhal"):
+        raise InputError("emulator flavour must be grbl or grblhal", source=url)
+    emu = FakeController(flavour=flavour, axes=profile.axes, homing=profile.homing).start()
+    return emu.port, emu
+
+
+def run(args: argparse.Namespace) -> Report:
+    from ..post.link import LinkError
+    from ..post.link.session import SendSession
+    from ..post.profiles import load_profile
+
+    profile = load_profile(args.post_machine)
+    if not profile.is_gcode:
+        raise InputError(f"profile {profile.name} is for {profile.dialect}; send streams G-code "
+                         "to GRBL-family controllers", source=args.post_machine)
+    job = load_job(args, profile)
+    jpath = args.send_journal or os.path.splitext(args.file)[0] + ".journal"
+    url, emu = _open_port(args.send_port, profile)
+    progress = TerminalProgress(not args.json)
+    session = SendSession(job, profile, url, jpath, mode=args.send_mode, check=args.send_check,
+                          home=not args.send_no_home, resume_from=args.send_resume,
+                          baud=args.send_baud, progress=progress,
+                          link_timeout=args.send_link_timeout)
+    old_int = signal.signal(signal.SIGINT, lambda *a: session.abort())
+    old_usr = None
+    if hasattr(signal, "SIGUSR1"):
+        old_usr = signal.signal(signal.SIGUSR1,
+                                lambda *a: (session.resume if session.paused else session.pause)())
+    try:
+        out = session.run()
+    except LinkError as exc:
+        raise InputError(exc.message, source=exc.source)
+    finally:
+        signal.signal(signal.SIGINT, old_int)
+        if old_usr is not None:
+            signal.signal(signal.SIGUSR1, old_usr)
+        progress.done()
+        if emu is not None:
+            emu.close()
+    data = {"file": args.file, "port": args.send_port, "machine": profile.name,
+            "mode": args.send_mode, **out.to_json(), "findings": []}
+    if out.check is not None and not out.check.ok:
+        chk = out.check
+        return Report(data=data, exit_code=1,
+                      text=f"{args.file}: check mode refused the job at line {chk.line}: "
+                           f"{chk.block} -> {chk.message}; nothing was cut")
+    res = out.result
+    if res.ok:
+        return Report(data=data, text=f"{args.file}: job done, {res.acked} lines acknowledged "
+                                      f"(journal {jpath})")
+    where = f" at line {res.line} ({res.block}), segment {res.segment}" if res.line else ""
+    text = (f"{args.file}: job stopped ({res.status}){where}: {res.message}. "
+            f"{'Stopped safely (feed hold, reset, knife up). ' if res.stopped_safely else ''}"
+            f"Journal {jpath}; check the machine (re-home if the position was lost), then "
+            f"resume with --resume-from {out.resume_from}.")
+    return Report(data=data, text=text, exit_code=1)

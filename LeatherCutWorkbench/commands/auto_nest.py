@@ -1,0 +1,63 @@
+"""*Auto-nest*: place the parts on sheets, a strip or a hide (task panel with
+container, spacing, rotations and time budget; live progress and cancel)."""
+
+from __future__ import annotations
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from ..document import objects
+from . import base, panel
+
+QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
+translate = FreeCAD.Qt.translate
+
+
+class NestPanel(panel.StagePanel):
+    UI = "AutoNest"
+    TITLE = QT_TRANSLATE_NOOP("LeatherCut", "Auto-nest")
+    STAGE = "Nest"
+
+    def __init__(self, job):
+        super().__init__(job)
+        if job.NestContainer == "none":
+            self.set_widget("NestContainer", "sheet")
+
+    def after_run(self) -> None:
+        rec = objects.stage_object(self.job, "Recognition")
+        if rec is not None and FreeCAD.GuiUp:
+            rec.ViewObject.Visibility = False
+        base.fit_view()
+
+    def show_result(self) -> None:
+        layout = objects.load_data(objects.stage_object(self.job, "Layout"))
+        if layout is None:
+            return
+        m = layout.metrics or {}
+        util = m.get("utilisation", m.get("utilization"))
+        parts = [translate("LeatherCut", "{0} placed, {1} unplaced").format(
+            len(layout.placements), len(layout.unplaced))]
+        if util is not None:
+            parts.append(translate("LeatherCut", "utilisation {0:.1f} %").format(100.0 * float(util)))
+        if "strip_length" in m:
+            parts.append(translate("LeatherCut", "strip length {0:.1f} mm").format(float(m["strip_length"])))
+        parts.append(translate("LeatherCut", "{0} containers").format(len(layout.containers)))
+        self.show_status(", ".join(parts))
+
+
+class AutoNest(base.Command):
+    NAME = "LeatherCut_AutoNest"
+    ICON = "AutoNest"
+    MENU = QT_TRANSLATE_NOOP("LeatherCut_AutoNest", "Auto-nest")
+    TIP = QT_TRANSLATE_NOOP("LeatherCut_AutoNest",
+                            "Nest the recognised parts on sheets, a strip or a leather hide with defects")
+
+    def active(self) -> bool:
+        return base.has_stage("Recognition") and not Gui.Control.activeDialog()
+
+    def run(self) -> None:
+        panel.ensure_no_dialog()
+        panel.show(NestPanel(base.active_job()))
+
+
+COMMAND = AutoNest

@@ -1,0 +1,70 @@
+"""*Import DXF*: choose a drawing, set the import options, import it into a new
+job (edges grouped by layer)."""
+
+from __future__ import annotations
+
+import os
+
+import FreeCAD
+import FreeCADGui as Gui
+
+from ..document import objects, pipeline
+from . import base, panel
+
+QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
+translate = FreeCAD.Qt.translate
+
+
+class ImportPanel(panel.StagePanel):
+    UI = "ImportDXF"
+    TITLE = QT_TRANSLATE_NOOP("LeatherCut", "Import DXF")
+    STAGE = "Import"
+
+    def after_run(self) -> None:
+        base.focus_job(self.job)
+        base.fit_view()
+
+    def show_result(self) -> None:
+        drawing = objects.load_data(objects.stage_object(self.job, "Drawing"))
+        if drawing is not None:
+            layers = {e.src.layer for e in drawing.edges}
+            self.show_status(translate("LeatherCut", "{0} edges on {1} layers, {2} marks, units {3} ({4})").format(
+                len(drawing.edges), len(layers), len(drawing.marks), drawing.units, drawing.units_source))
+
+
+def open_import_panel(path: str) -> ImportPanel:
+    """Create a job for ``path`` (in the panel's transaction) and open the import panel."""
+    panel.ensure_no_dialog()
+    doc = FreeCAD.ActiveDocument or FreeCAD.newDocument()
+    doc.openTransaction("LeatherCut: Import DXF")
+    job = pipeline.make_job(doc, os.path.splitext(os.path.basename(path))[0], path)
+    p = ImportPanel(job, transaction_open=True)
+    panel.show(p)
+    return p
+
+
+class ImportDXF(base.Command):
+    NAME = "LeatherCut_ImportDXF"
+    ICON = "ImportDXF"
+    MENU = QT_TRANSLATE_NOOP("LeatherCut_ImportDXF", "Import DXF…")
+    TIP = QT_TRANSLATE_NOOP("LeatherCut_ImportDXF",
+                            "Import a DXF drawing into a new LeatherCut job (edges grouped by layer)")
+
+    def active(self) -> bool:
+        return not Gui.Control.activeDialog()
+
+    def run(self) -> None:
+        from PySide import QtGui
+        start = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/LeatherCut").GetString(
+            "LastFolder", os.path.expanduser("~"))
+        path, _f = QtGui.QFileDialog.getOpenFileName(
+            Gui.getMainWindow(), translate("LeatherCut", "Import DXF"), start,
+            translate("LeatherCut", "DXF drawings (*.dxf *.DXF);;All files (*)"))
+        if not path:
+            return
+        FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/LeatherCut").SetString(
+            "LastFolder", os.path.dirname(path))
+        open_import_panel(path)
+
+
+COMMAND = ImportDXF

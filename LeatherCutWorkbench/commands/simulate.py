@@ -1,0 +1,170 @@
+"""*Simulate*: animate the knife along the planned path (cutting and idle moves)
+at the machine's speeds times a speed-up factor."""
+
+from __future__ import annotations
+
+import bisect
+import time
+from typing import List, Tuple
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+from ..core.geometry import dist, path_points
+from ..document import objects, pipeline
+from . import base, paths
+
+QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
+translate = FreeCAD.Qt.translate
+
+DEFAULT_CUT_FEED = 6000.0     # mm/min when no machine profile can be loaded
+DEFAULT_RAPID_FEED = 20000.0  # mm/min
+
+
+class Timeline:
+    """The knife's position over machine time (s) along the plan: idle moves at
+    the rapid feed, cuts at the cut feed (acceleration ignored)."""
+
+    def __init__(self, plan, cut_feed: float, rapid_feed: float):
+        self.points: List[Tuple[float, float]] = [plan.home]
+        self.times: List[float] = [0.0]
+        self.item_at: List[int] = [-1]
+        cut_v, rapid_v = cut_feed / 60.0, rapid_feed / 60.0
+        for i, it in enumerate(plan.items):
+            self._add(it.start, rapid_v, -1)
+            for p in path_points(it.segments, 0.1)[1:]:
+                self._add(p, cut_v, i)
+        self._add(plan.home, rapid_v, -1)
+
+    def _add(self, p, speed: float, item: int) -> None:
+        t = self.times[-1] + dist(self.points[-1], p) / max(speed, 1e-9)
+        self.points.append(p)
+        self.times.append(t)
+        self.item_at.append(item)
+
+    @property
+    def duration(self) -> float:
+        return self.times[-1]
+
+    def at(self, t: float):
+        """(position, item index or -1 when idle) at machine time ``t``."""
+        t = min(max(t, 0.0), self.duration)
+        k = max(1, bisect.bisect_left(self.times, t))
+        if k >= len(self.times):
+            return self.points[-1], -1
+        t0, t1 = self.times[k - 1], self.times[k]
+        f = 0.0 if t1 <= t0 else (t - t0) / (t1 - t0)
+        a, b = self.points[k - 1], self.points[k]
+        return (a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])), self.item_at[k]
+
+
+class SimulatePanel:
+    """Play / pause / stop, speed-up factor and a position slider."""
+
+    def __init__(self, job):
+        self.job = job
+        self.obj = objects.stage_object(job, "CutPath")
+        plan = pipeline.stored_plan(job)
+        cut, rapid = DEFAULT_CUT_FEED, DEFAULT_RAPID_FEED
+        try:
+            from ..post.profiles import load_profile
+            prof = load_profile(job.PostMachine)
+            cut, rapid = prof.cut_feed, prof.rapid_feed
+        except Exception:  # no profile: the defaults give a plausible animation
+            pass
+        self.timeline = Timeline(plan, cut, rapid)
+        self.items = len(plan.items)
+        self.form = Gui.PySideUic.loadUi(paths.ui("Simulate"))
+        self.slider = self.form.findChild(QtGui.QSlider, "positionSlider")
+        self.slider.setRange(0, 1000)
+        self.speed = self.form.findChild(QtGui.QDoubleSpinBox, "speedFactor")
+        self.label = self.form.findChild(QtGui.QLabel, "statusLabel")
+        self.form.findChild(QtGui.QPushButton, "playButton").clicked.connect(self.play)
+        self.form.findChild(QtGui.QPushButton, "pauseButton").clicked.connect(self.pause)
+        self.form.findChild(QtGui.QPushButton, "stopButton").clicked.connect(self.stop)
+        self.slider.sliderMoved.connect(lambda v: self.seek(v / 1000.0 * self.timeline.duration))
+        self.t = 0.0
+        self.wall = None
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(40)
+        self.timer.timeout.connect(self.tick)
+        size = max(self._extent() / 60.0, 2.0)
+        self.knife_size = size
+        self.seek(0.0)
+
+    def _extent(self) -> float:
+        xs = [p[0] for p in self.timeline.points]
+        ys = [p[1] for p in self.timeline.points]
+        return max(max(xs) - min(xs), max(ys) - min(ys), 1.0)
+
+    def vp(self):
+        return self.obj.ViewObject.Proxy if self.obj is not None and self.obj.ViewObject else None
+
+    def seek(self, t: float) -> None:
+        self.t = min(max(t, 0.0), self.timeline.duration)
+        pos, item = self.timeline.at(self.t)
+        vp = self.vp()
+        if vp is not None and hasattr(vp, "show_knife"):
+            vp.show_knife(pos, self.knife_size)
+        self.slider.blockSignals(True)
+        self.slider.setValue(int(1000 * self.t / max(self.timeline.duration, 1e-9)))
+        self.slider.blockSignals(False)
+        what = translate("LeatherCut", "cutting {0} of {1}").format(item + 1, self.items) if item >= 0 \
+            else translate("LeatherCut", "idle move (knife up)")
+        self.label.setText(translate("LeatherCut", "t = {0:.1f} s of {1:.1f} s – {2}").format(
+            self.t, self.timeline.duration, what))
+
+    def play(self) -> None:
+        if self.t >= self.timeline.duration:
+            self.t = 0.0
+        self.wall = time.monotonic()
+        self.timer.start()
+
+    def pause(self) -> None:
+        self.timer.stop()
+
+    def stop(self) -> None:
+        self.timer.stop()
+        self.seek(0.0)
+
+    def tick(self) -> None:
+        now = time.monotonic()
+        dt = (now - (self.wall or now)) * self.speed.value()
+        self.wall = now
+        self.seek(self.t + dt)
+        if self.t >= self.timeline.duration:
+            self.timer.stop()
+
+    def getStandardButtons(self):
+        return int(QtGui.QDialogButtonBox.Close)
+
+    def reject(self):
+        self.timer.stop()
+        vp = self.vp()
+        if vp is not None and hasattr(vp, "show_knife"):
+            vp.show_knife(None)
+        Gui.Control.closeDialog()
+        return True
+
+    def accept(self):
+        return self.reject()
+
+
+class Simulate(base.Command):
+    NAME = "LeatherCut_Simulate"
+    ICON = "Simulate"
+    MENU = QT_TRANSLATE_NOOP("LeatherCut_Simulate", "Simulate")
+    TIP = QT_TRANSLATE_NOOP("LeatherCut_Simulate",
+                            "Animate the knife along the planned cut path at the machine's speeds")
+
+    def active(self) -> bool:
+        return base.has_stage("CutPath") and not Gui.Control.activeDialog()
+
+    def run(self) -> None:
+        from . import panel
+        panel.ensure_no_dialog()
+        panel.show(SimulatePanel(base.active_job()))
+
+
+COMMAND = Simulate

@@ -1,0 +1,133 @@
+"""Nesting stage: place part copies on sheets, a strip or leather hides.
+
+Public entry points::
+
+    from LeatherCutWorkbench.core.nesting import nest, NestOptions, placed_parts
+    layout = nest(parts, NestOptions(container=ContainerSpec.sheet(1000, 600)))
+    cut_parts = placed_parts(parts, layout)
+
+Modules: :mod:`options` (NestOptions, ContainerSpec), :mod:`shapes` (parts as
+polygons, orientation variants, spacing), :mod:`containers` (sheet / strip /
+hide, hide DXF layer convention), :mod:`nfp` (no-fit / inner-fit polygons),
+:mod:`blf` (bottom-left fill), :mod:`search` (anytime local search over
+order and orientations, one process per core), :mod:`checker` (independent
+validity check), :mod:`esicup` (benchmark instance reader),
+:mod:`sparrow_engine` (spyrrow in a subprocess), :mod:`outputs` (layout
+JSON, DXF, SVG).
+
+Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
+a placement the checker rejects is moved to ``unplaced`` with an error
+finding (that would be a bug; it never happens in the tests).
+"""
+
+from __future__ import annotations
+
+import copy as _copy
+from typing import List, Optional, Sequence
+
+from ..errors import InputError
+from ..geometry import Transform2D
+from ..model import Contour, Finding, LeadIn, Layout, Mark, Part
+from ..progress import ProgressFn, report
+from .checker import check_layout
+from .containers import read_hide_dxf
+from .options import ContainerSpec, NestOptions, parse_rotations
+
+__all__ = ["nest", "placed_parts", "NestOptions", "ContainerSpec", "parse_rotations",
+           "read_hide_dxf", "check_layout"]
+
+
+def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[ProgressFn] = None) -> Layout:
+    """Place every copy of every non-excluded part (see module doc).
+
+    Raises InputError for unusable options or parts, CancelledError when
+    ``progress`` returns False."""
+    options.validate()
+    active = [p for p in parts if not p.excluded]
+    ids = [p.id for p in active]
+    if len(set(ids)) != len(ids):
+        dup = sorted({i for i in ids if ids.count(i) > 1})
+        raise InputError(f"part ids must be unique, repeated: {', '.join(dup[:5])}")
+    if options.engine == "sparrow":
+        from .sparrow_engine import run_sparrow
+        layout = run_sparrow(active, options, progress)
+    else:
+        from .engine import run_own
+        layout = run_own(active, options, progress)
+    report(progress, 0.99, "checking the layout")
+    problems = check_layout(active, layout, spacing=options.spacing, margin=options.margin,
+                            tol=options.tolerance, chord_tol=options.chord_tol,
+                            rotations_override=options.rotations_override,
+                            mirror_override=options.mirror_override,
+                            free_rotation=options.free_rotation)
+    if problems:
+        _drop_invalid(active, layout, problems, options)
+    layout.metrics["checked"] = True
+    layout.metrics["tolerance_mm"] = options.tolerance
+    report(progress, 1.0, "nesting done")
+    return layout
+
+
+def _drop_invalid(parts: Sequence[Part], layout: Layout, problems: List[str],
+                  options: NestOptions) -> None:
+    """Move placements named in ``problems`` to unplaced (a safety net)."""
+    bad = set()
+    for msg in problems:
+        lab = msg.split(" ", 1)[0].rstrip(":")
+        bad.add(lab)
+    keep = []
+    for pl in layout.placements:
+        if f"{pl.part_id}#{pl.copy}" in bad:
+            layout.unplaced.append((pl.part_id, pl.copy))
+        else:
+            keep.append(pl)
+    layout.placements = keep
+    for msg in problems[:20]:
+        layout.findings.append(Finding("error", "invalid-placement-removed", msg))
+    rest = check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
+                        tol=options.tolerance, chord_tol=options.chord_tol,
+                        rotations_override=options.rotations_override,
+                        mirror_override=options.mirror_override,
+                        free_rotation=options.free_rotation)
+    if rest:
+        from ..errors import LeatherCutError
+        raise LeatherCutError("nesting produced an invalid layout: " + "; ".join(rest[:3]))
+    layout.metrics["placed"] = len(layout.placements)
+    layout.metrics["unplaced"] = len(layout.unplaced)
+
+
+def placed_parts(parts: Sequence[Part], layout: Layout) -> List[Part]:
+    """Deep copies of the parts, one per placement, transformed into container
+    coordinates (mirror about the part's Y axis, rotate about its origin,
+    translate); ids ``"<part id>#<copy>"``, quantity 1."""
+    by_id = {p.id: p for p in parts}
+    out: List[Part] = []
+    for pl in layout.placements:
+        src = by_id.get(pl.part_id)
+        if src is None:
+            raise InputError(f"layout places unknown part {pl.part_id!r}")
+        xf = Transform2D(dx=pl.x, dy=pl.y, angle=pl.angle, mirrored=pl.mirrored)
+        new_id = f"{src.id}#{pl.copy}"
+
+        def contour(c: Contour) -> Contour:
+            segs = [s.transformed(xf) for s in c.segments]
+            if pl.mirrored:                       # mirroring flips orientation: restore it
+                segs = [s.reversed() for s in reversed(segs)]
+            return Contour(id=f"{new_id}/{c.id}", segments=segs, layer=c.layer,
+                           shared=list(c.shared))
+
+        lead_ins = [LeadIn(id=f"{new_id}/{li.id}", contour_id=f"{new_id}/{li.contour_id}",
+                           segments=[s.transformed(xf) for s in li.segments], role=li.role)
+                    for li in src.lead_ins]
+        marks = [Mark(position=xf.apply(m.position), kind=m.kind, src=_copy.deepcopy(m.src))
+                 for m in src.marks]
+        p = _copy.deepcopy(src)
+        p.id = new_id
+        p.outer = contour(src.outer)
+        p.holes = [contour(h) for h in src.holes]
+        p.lead_ins = lead_ins
+        p.marks = marks
+        p.quantity = 1
+        p.parent_id = None
+        out.append(p)
+    return out

@@ -1,0 +1,265 @@
+"""Constructive placement: bottom-left fill on no-fit polygons.
+
+Pieces are placed one by one in a given order.  For each allowed variant the
+feasible region is the container's inner-fit region minus the union of the
+NFPs of everything already placed in that container (pyclipper, non-zero
+fill).  Every vertex of that region is a candidate -- touching positions,
+including the corners where two NFPs cross -- and the candidate with the
+smallest right edge (then the lowest, then the leftmost) wins: gravity to the
+left, so a strip stays short and a sheet or hide keeps its free material in
+one piece on the right.
+
+All coordinates are grid integers; a :class:`Bin` is one container instance
+(a strip, one sheet, one hide).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+import pyclipper
+
+from .nfp import NfpCache
+from .shapes import IntPath, Variant
+
+_NZ = pyclipper.PFT_NONZERO
+
+
+@dataclass
+class BinSpec:
+    """A container instance in grid units.
+
+    ``rect`` (x0, y0, x1, y1) is the usable rectangle of a sheet or strip (after
+    the margin; a strip's x1 is ignored: it is open).  A hide has ``regions``:
+    per grade, the (outers, obstacles) rings of the material that grade may use
+    (after margins), turned into inner-fit regions per variant on demand."""
+
+    kind: str
+    rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
+    regions: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
+    grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
+
+
+class Placer:
+    """Bottom-left fill of item sequences into bins (see module doc)."""
+
+    def __init__(self, variants: Sequence[Variant], type_variants: Sequence[Sequence[int]],
+                 type_grade: Sequence[int], bins: Sequence[BinSpec], open_new: bool,
+                 max_bins: Optional[int], nfps: Optional[NfpCache] = None):
+        self.variants = variants
+        self.type_variants = type_variants
+        self.type_grade = type_grade
+        self.bin_specs = list(bins)
+        self.open_new = open_new
+        self.max_bins = max_bins
+        self.nfps = nfps or NfpCache(variants)
+        self._ifp_cache: Dict[Tuple[int, int], List[IntPath]] = {}
+
+    # ---------------------------------------------------------------- regions
+    def _spec(self, b: int) -> BinSpec:
+        return self.bin_specs[min(b, len(self.bin_specs) - 1)]
+
+    def _ifp(self, b: int, v: Variant, extent: int) -> List[IntPath]:
+        """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""
+        spec = self._spec(b)
+        if spec.kind == "hide":
+            from .nfp import region_ifp
+            rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
+            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index)
+            hit = self._ifp_cache.get(key)
+            if hit is None:
+                outers, obstacles = spec.regions[rk]
+                hit = region_ifp(outers, obstacles, v.core)
+                self._ifp_cache[key] = hit
+            return hit
+        x0, y0, x1, y1 = spec.rect
+        if spec.kind == "strip":
+            x1 = extent
+        lx, hx = x0 - v.bbox[0], x1 - v.bbox[2]
+        ly, hy = y0 - v.bbox[1], y1 - v.bbox[3]
+        if lx > hx or ly > hy:
+            return []
+        return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
+
+    def _can_open(self, n: int) -> bool:
+        """May an (n+1)-th bin be opened?"""
+        if self.max_bins is not None:
+            return n < self.max_bins
+        return self.open_new or n < len(self.bin_specs)
+
+    # -------------------------------------------------------------- placement
+    def _new_bin(self, b: int) -> "BinState":
+        return BinState(placed=(), extent=self._spec(b).rect[0], free={})
+
+    def free_region(self, b: int, state: "BinState", vi: int) -> List[IntPath]:
+        """Translations of variant ``vi`` that fit bin ``b`` next to everything
+        placed so far.  Kept per variant and updated lazily: only the NFPs of
+        pieces placed since the last query are cut away (one clip operation)."""
+        hit = state.free.get(vi)
+        if hit is None:
+            region = [r for r in self._ifp(b, self.variants[vi], _OPEN_STRIP)
+                      if len(r) >= 3 and pyclipper.Area(r) != 0]
+            done = 0
+        else:
+            region, done = hit
+        n = len(state.placed)
+        if done < n and region:
+            clips = []
+            for (u, tx, ty) in state.placed[done:]:
+                paths, _ = self.nfps.get(u, vi)
+                off = np.array([tx, ty], dtype=np.int64)
+                clips.extend((p + off) for p in paths)
+            c = pyclipper.Pyclipper()
+            c.AddPaths(region, pyclipper.PT_SUBJECT, True)
+            c.AddPaths(clips, pyclipper.PT_CLIP, True)
+            region = c.Execute(pyclipper.CT_DIFFERENCE, _NZ, _NZ)
+        state.free[vi] = (region, n)
+        return region
+
+    def best_position(self, b: int, state: "BinState", vi: int) -> Optional[Tuple[int, int, int]]:
+        """Best (right edge, x, y) candidate of variant ``vi`` in bin ``b`` or None."""
+        free = self.free_region(b, state, vi)
+        if not free:
+            return None
+        v = self.variants[vi]
+        pts = np.array([q for p in free for q in p], dtype=np.int64)
+        right = pts[:, 0] + v.bbox[2]
+        k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
+        return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
+
+    def _can_open(self, n: int) -> bool:
+        """May an (n+1)-th bin be opened?"""
+        if self.max_bins is not None:
+            return n < self.max_bins
+        return self.open_new or n < len(self.bin_specs)
+
+    # -------------------------------------------------------------- placement
+    def _new_bin(self, b: int) -> "BinState":
+        return BinState(placed=(), extent=self._spec(b).rect[0], free={})
+
+    def free_region(self, b: int, state: "BinState", vi: int) -> List[IntPath]:
+        """Translations of variant ``vi`` that fit bin ``b`` next to everything
+        placed so far.  Kept per variant and updated lazily: only the NFPs of
+        pieces placed since the last query are cut away (one clip operation)."""
+        hit = state.free.get(vi)
+        if hit is None:
+            region = [r for r in self._ifp(b, self.variants[vi], _OPEN_STRIP)
+                      if len(r) >= 3 and pyclipper.Area(r) != 0]
+            done = 0
+        else:
+            region, done = hit
+        n = len(state.placed)
+        if done < n and region:
+            clips = []
+            for (u, tx, ty) in state.placed[done:]:
+                paths, _ = self.nfps.get(u, vi)
+                off = np.array([tx, ty], dtype=np.int64)
+                clips.extend((p + off) for p in paths)
+            c = pyclipper.Pyclipper()
+            c.AddPaths(region, pyclipper.PT_SUBJECT, True)
+            c.AddPaths(clips, pyclipper.PT_CLIP, True)
+            region = c.Execute(pyclipper.CT_DIFFERENCE, _NZ, _NZ)
+        state.free[vi] = (region, n)
+        return region
+
+    def best_position(self, b: int, state: "BinState", vi: int) -> Optional[Tuple[int, int, int]]:
+        """Best (right edge, x, y) candidate of variant ``vi`` in bin ``b`` or None."""
+        free = self.free_region(b, state, vi)
+        if not free:
+            return None
+        v = self.variants[vi]
+        pts = np.array([q for p in free for q in p], dtype=np.int64)
+        right = pts[:, 0] + v.bbox[2]
+        crit = self.criterion
+        if crit == "right":
+            order = np.lexsort((pts[:, 0], pts[:, 1], right))
+        elif crit == "left":
+            order = np.lexsort((pts[:, 1], pts[:, 0] + v.bbox[0]))
+        else:  # "ref": the reference point's x, then y
+            order = np.lexsort((pts[:, 1], pts[:, 0]))
+        k = order[0]
+        if crit == "right":
+            return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
+        if crit == "left":
+            return int(pts[k, 0] + v.bbox[0]), int(pts[k, 1]), int(pts[k, 0]), int(pts[k, 1]), int(right[k])
+        return int(pts[k, 0]), int(pts[k, 1]), int(pts[k, 0]), int(pts[k, 1]), int(right[k])
+
+    def _can_open(self, n: int) -> bool:
+        """May an (n+1)-th bin be opened?"""
+        if self.max_bins is not None:
+            return n < self.max_bins
+        return self.open_new or n < len(self.bin_specs)
+
+    def place(self, sequence: Sequence[Tuple[int, Optional[int]]],
+              prefix: Optional["Trace"] = None, keep: int = 0) -> "Trace":
+        """Place ``sequence`` (type index, forced variant or None) in order.
+
+        With ``prefix`` (the trace of an earlier call) and ``keep`` = k, the first
+        k items are taken as placed there (the search changes only later items).
+        Returns the trace: placements (seq index, bin, variant, x, y; bin -1 =
+        unplaced) and the bin states before each item."""
+        if prefix is not None and keep > 0:
+            placements = list(prefix.placements[:keep])
+            states = list(prefix.states[:keep + 1])
+            bins = [bs.copy() for bs in prefix.states[keep]]
+        else:
+            placements, states, bins = [], [], [self._new_bin(0)]
+            states.append(tuple(bs.copy() for bs in bins))
+        for si in range(len(placements), len(sequence)):
+            t, forced = sequence[si]
+            cands = [forced] if forced is not None else self.type_variants[t]
+            done = False
+            b = 0
+            while True:
+                if b == len(bins):
+                    if not self._can_open(len(bins)):
+                        break
+                    bins.append(self._new_bin(b))
+                best = None
+                for vi in cands:
+                    r = self.best_position(b, bins[b], vi)
+                    if r is not None and (best is None or r < best[0]):
+                        best = (r, vi)
+                if best is not None:
+                    (right, tx, ty), vi = best
+                    bs = bins[b]
+                    bins[b] = BinState(bs.placed + ((vi, tx, ty),), max(bs.extent, right), bs.free)
+                    placements.append((si, b, vi, tx, ty))
+                    done = True
+                    break
+                if not bins[b].placed and self._spec(b).kind != "hide":
+                    break                   # does not fit an empty sheet: nowhere
+                b += 1
+            if not done:
+                placements.append((si, -1, -1, 0, 0))
+            states.append(tuple(bs.copy() for bs in bins))
+        return Trace(placements, states)
+
+
+#: Open strips are searched up to this x (grid units) -- far beyond any layout.
+_OPEN_STRIP = 1 << 40
+
+
+@dataclass
+class BinState:
+    """What one bin holds: placed (variant, x, y), the right-most edge, and the
+    cached free regions per variant (shared between states, never mutated)."""
+
+    placed: tuple
+    extent: int
+    free: Dict[int, Tuple[List[IntPath], int]]
+
+    def copy(self) -> "BinState":
+        return BinState(self.placed, self.extent, dict(self.free))
+
+
+@dataclass
+class Trace:
+    placements: List[Tuple[int, int, int, int, int]]
+    states: List[tuple]
+
+    @property
+    def unplaced(self) -> List[int]:
+        return [p[0] for p in self.placements if p[1] < 0]

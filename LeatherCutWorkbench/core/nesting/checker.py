@@ -1,0 +1,148 @@
+"""Independent validity check of a layout (shapely; shares no code with the engine).
+
+A layout is valid when, within the length tolerance ``tol`` (mm):
+
+* every placement names a known part, a copy index below its quantity, no
+  copy twice, and a known container;
+* its angle is one the part allows (to 1e-6 degrees) and it is mirrored only
+  if the part allows mirroring;
+* the placed true shape lies inside its container's outline (area outside
+  <= tol x perimeter);
+* it overlaps no defect and no other part beyond tol x the shorter perimeter
+  (an overlap thinner than tol everywhere has at most that area); parts in a
+  hole of another part are fine;
+* it keeps ``spacing - tol`` from every other part and ``margin - tol`` from
+  the container edge and the defects;
+* on a hide, it lies only in zones of its grade or better (the innermost /
+  smallest zone containing a point decides its grade, else ``base_grade``).
+
+:func:`check_layout` returns a list of problems (empty = valid).
+"""
+
+from __future__ import annotations
+
+from typing import Dict, List, Optional, Sequence
+
+from shapely import affinity
+from shapely.geometry import Polygon
+from shapely.strtree import STRtree
+
+from ..model import Container, Layout, Part
+
+
+def part_polygon(part: Part, chord_tol: float = 0.05) -> Polygon:
+    """The part's true shape (holes included), in part coordinates."""
+    return Polygon(part.outer.points(chord_tol), [h.points(chord_tol) for h in part.holes])
+
+
+def placed_polygon(poly: Polygon, x: float, y: float, angle: float, mirrored: bool) -> Polygon:
+    """Mirror about the part's Y axis, rotate about its origin, translate."""
+    g = poly
+    if mirrored:
+        g = affinity.scale(g, xfact=-1.0, yfact=1.0, origin=(0, 0))
+    if angle:
+        g = affinity.rotate(g, angle, origin=(0, 0))
+    return affinity.translate(g, x, y)
+
+
+def _angle_ok(angle: float, allowed: Optional[Sequence[float]]) -> bool:
+    if allowed is None:
+        return True
+    for a in allowed:
+        d = (angle - a) % 360.0
+        if min(d, 360.0 - d) <= 1e-6:
+            return True
+    return False
+
+
+def _zone_grade_region(c: Container, grade: int):
+    """The part of the hide a part of ``grade`` may use (shapely geometry)."""
+    region = Polygon(c.outline) if c.base_grade >= grade else Polygon()
+    for zg, ring in sorted(c.zones, key=lambda z: -abs(Polygon(z[1]).area)):
+        zp = Polygon(ring)
+        region = region.union(zp) if zg >= grade else region.difference(zp)
+    return region
+
+
+def check_layout(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,
+                 margin: float = 0.0, tol: float = 1e-3, chord_tol: float = 0.05,
+                 rotations_override: Optional[List[float]] = None,
+                 mirror_override: Optional[bool] = None,
+                 free_rotation: bool = False) -> List[str]:
+    """Problems found in ``layout`` (empty list = valid).  See module doc."""
+    problems: List[str] = []
+    by_id: Dict[str, Part] = {p.id: p for p in parts}
+    conts: Dict[str, Container] = {c.id: c for c in layout.containers}
+    base = {p.id: part_polygon(p, chord_tol) for p in parts}
+    seen = set()
+    placed: List[Polygon] = []
+    labels: List[str] = []
+    where: List[str] = []
+    for pl in layout.placements:
+        lab = f"{pl.part_id}#{pl.copy}"
+        part = by_id.get(pl.part_id)
+        if part is None:
+            problems.append(f"{lab}: unknown part")
+            continue
+        if (pl.part_id, pl.copy) in seen:
+            problems.append(f"{lab}: placed twice")
+        seen.add((pl.part_id, pl.copy))
+        if not 0 <= pl.copy < part.quantity:
+            problems.append(f"{lab}: copy index outside quantity {part.quantity}")
+        allowed = None if free_rotation else (
+            rotations_override if rotations_override is not None else part.rotations)
+        if not _angle_ok(pl.angle, allowed):
+            problems.append(f"{lab}: angle {pl.angle:g} not allowed ({allowed})")
+        mir_ok = part.mirror_allowed if mirror_override is None else mirror_override
+        if pl.mirrored and not mir_ok:
+            problems.append(f"{lab}: mirrored but mirroring is not allowed")
+        c = conts.get(pl.container)
+        if c is None:
+            problems.append(f"{lab}: unknown container {pl.container!r}")
+            continue
+        g = placed_polygon(base[pl.part_id], pl.x, pl.y, pl.angle, pl.mirrored)
+        per = g.exterior.length
+        outline = Polygon(c.outline)
+        out_area = g.difference(outline).area
+        if out_area > tol * per:
+            problems.append(f"{lab}: {out_area:.4g} mm2 outside container {c.id}")
+        if margin > tol and g.exterior.distance(outline.exterior) < margin - tol \
+                and out_area <= tol * per:
+            problems.append(f"{lab}: closer than the margin {margin:g} mm to the edge of {c.id}")
+        for k, d in enumerate(c.defects):
+            dp = Polygon(d)
+            ov = g.intersection(dp).area
+            if ov > tol * min(per, dp.exterior.length):
+                problems.append(f"{lab}: covers defect {k} of {c.id} ({ov:.4g} mm2)")
+            elif margin > tol and g.distance(dp) < margin - tol:
+                problems.append(f"{lab}: closer than the margin {margin:g} mm to defect {k} of {c.id}")
+        if c.zones or c.base_grade < part.grade:
+            allowed_region = _zone_grade_region(c, part.grade)
+            bad = g.difference(allowed_region).area
+            if bad > tol * per:
+                problems.append(f"{lab}: {bad:.4g} mm2 in material below grade {part.grade}")
+        placed.append(g)
+        labels.append(lab)
+        where.append(pl.container)
+    # pairwise overlap and spacing
+    if placed:
+        tree = STRtree(placed)
+        reach = max(spacing - tol, 0.0)
+        for i, g in enumerate(placed):
+            probe = g.buffer(reach, 4) if reach > 0 else g
+            for j in tree.query(probe):
+                j = int(j)
+                if j <= i or where[i] != where[j]:
+                    continue
+                h = placed[j]
+                lim = tol * min(g.exterior.length, h.exterior.length)
+                ov = g.intersection(h).area
+                if ov > lim:
+                    problems.append(f"{labels[i]} overlaps {labels[j]} by {ov:.4g} mm2")
+                elif reach > 0 and g.distance(h) < spacing - tol:
+                    problems.append(f"{labels[i]} and {labels[j]} are {g.distance(h):.4g} mm apart "
+                                    f"(spacing {spacing:g} mm)")
+    for (pid, cp) in layout.unplaced:
+        if (pid, cp) in seen:
+            problems.append(f"{pid}#{cp}: both placed and unplaced")
+    return problems

@@ -1,0 +1,171 @@
+"""Containers: sheets, strips and leather hides (outline, defects, quality zones).
+
+Hide DXF layer convention (case-insensitive; read with ezdxf; lengths are
+converted to mm from the file's ``$INSUNITS``, unitless files are read as mm):
+
+* ``HIDE`` -- closed outline(s) of the hide(s) (LWPOLYLINE / POLYLINE /
+  SPLINE / ELLIPSE / CIRCLE; arcs and splines are flattened).  The material
+  outside every zone has grade 1; ``HIDE_<g>`` sets that base grade to g.
+* ``DEFECT`` (or ``DEFECT_<anything>``) -- closed regions no part may overlap
+  (holes, scars, brands), kept ``margin`` mm away from parts.
+* ``ZONE_<g>`` -- closed quality zones of grade g (integer, higher = better).
+  Where zones nest, the smallest zone containing a point decides its grade.
+
+A part of grade p may only lie where the grade is >= p (grade 0 parts go
+anywhere on the hide).  Each defect or zone belongs to the hide outline that
+contains its first vertex; several hides in one file are nested in the order
+of their outlines' leftmost points.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import List, Optional, Sequence, Tuple
+
+from shapely.geometry import MultiPolygon, Polygon
+from shapely.geometry.base import BaseGeometry
+
+from ..errors import InputError
+from ..geometry import Point
+from ..model import Container
+
+_ZONE = re.compile(r"^ZONE_(-?\d+)$", re.I)
+_HIDE = re.compile(r"^HIDE(?:_(-?\d+))?$", re.I)
+
+
+def rectangle(x0: float, y0: float, x1: float, y1: float) -> List[Point]:
+    return [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+
+
+def _ccw(ring: Sequence[Point]) -> List[Point]:
+    p = Polygon(ring)
+    pts = list(p.exterior.coords)[:-1]
+    if not p.exterior.is_ccw:
+        pts = pts[::-1]
+    return [(float(x), float(y)) for x, y in pts]
+
+
+def read_hide_dxf(path: str, flatten_tol: float = 0.1) -> List[Container]:
+    """Hides in a DXF drawn with the layer convention above."""
+    import ezdxf
+    from ezdxf import path as ezpath
+
+    try:
+        doc = ezdxf.readfile(path)
+    except IOError as exc:
+        raise InputError(f"cannot read hide DXF: {exc}", path) from None
+    except ezdxf.DXFStructureError as exc:
+        raise InputError(f"not a valid DXF file: {exc}", path) from None
+    from ezdxf import units as ezunits
+    try:
+        factor = ezunits.conversion_factor(doc.units, ezunits.MM) if doc.units else 1.0
+    except (KeyError, ValueError, TypeError):
+        factor = 1.0
+    outlines: List[Tuple[int, List[Point], str]] = []
+    defects: List[Tuple[List[Point], str]] = []
+    zones: List[Tuple[int, List[Point], str]] = []
+    for e in doc.modelspace():
+        layer = e.dxf.get("layer", "0").upper()
+        hm, zm = _HIDE.match(layer), _ZONE.match(layer)
+        is_defect = layer == "DEFECT" or layer.startswith("DEFECT_")
+        if not (hm or zm or is_defect):
+            continue
+        src = f"{path}: {e.dxftype()} #{e.dxf.handle} on layer {layer}"
+        try:
+            p = ezpath.make_path(e)
+        except (TypeError, ValueError):
+            raise InputError("entity cannot be a closed region", src) from None
+        pts = [(v.x * factor, v.y * factor) for v in p.flattening(flatten_tol / factor)]
+        closed = getattr(e, "closed", None) or e.dxftype() == "CIRCLE" or \
+            (len(pts) > 2 and abs(pts[0][0] - pts[-1][0]) + abs(pts[0][1] - pts[-1][1]) < 1e-6)
+        if e.dxftype() == "POLYLINE":
+            closed = e.is_closed
+        if not closed or len(pts) < 3:
+            raise InputError("region outline is not closed", src)
+        if len(pts) > 1 and pts[0] == pts[-1]:
+            pts = pts[:-1]
+        poly = Polygon(pts)
+        if not poly.is_valid or poly.area <= 0:
+            raise InputError("region outline crosses itself or has no area", src)
+        ring = _ccw(pts)
+        if hm:
+            outlines.append((int(hm.group(1)) if hm.group(1) else 1, ring, src))
+        elif zm:
+            zones.append((int(zm.group(1)), ring, src))
+        else:
+            defects.append((ring, src))
+    if not outlines:
+        raise InputError("no hide outline: draw it as a closed polyline on layer HIDE", path)
+    outlines.sort(key=lambda o: (min(x for x, _ in o[1]), min(y for _, y in o[1])))
+    hides = [Container(id=f"hide{i + 1}", kind="hide", outline=o[1], base_grade=o[0])
+             for i, o in enumerate(outlines)]
+    polys = [Polygon(o[1]) for o in outlines]
+
+    def owner(ring: List[Point], src: str) -> Container:
+        from shapely.geometry import Point as SPoint
+        for h, pg in zip(hides, polys):
+            if pg.intersects(SPoint(ring[0])) or pg.intersects(Polygon(ring)):
+                return h
+        raise InputError("region lies outside every hide outline", src)
+
+    for ring, src in defects:
+        owner(ring, src).defects.append(ring)
+    for g, ring, src in zones:
+        owner(ring, src).zones.append((g, ring))
+    return hides
+
+
+def usable_region(c: Container, grade: int) -> BaseGeometry:
+    """Where a part of ``grade`` may lie on container ``c`` (no margins): the
+    outline minus defects, restricted to zones of that grade or better."""
+    outline = Polygon(c.outline)
+    region: BaseGeometry = outline if c.base_grade >= grade else Polygon()
+    for zg, ring in sorted(c.zones, key=lambda z: -Polygon(z[1]).area):
+        zp = Polygon(ring)
+        region = region.union(zp) if zg >= grade else region.difference(zp)
+    region = region.intersection(outline)
+    for d in c.defects:
+        region = region.difference(Polygon(d))
+    return region
+
+
+def net_area(c: Container) -> float:
+    """Outline area minus defects (mm^2)."""
+    g: BaseGeometry = Polygon(c.outline)
+    for d in c.defects:
+        g = g.difference(Polygon(d))
+    return g.area
+
+
+def polygons_of(g: BaseGeometry) -> List[Polygon]:
+    if g.is_empty:
+        return []
+    if isinstance(g, Polygon):
+        return [g]
+    if isinstance(g, MultiPolygon):
+        return list(g.geoms)
+    return [p for p in getattr(g, "geoms", []) if isinstance(p, Polygon)]
+
+
+def shrink_for_margin(c: Container, grade: int, margin: float, simplify: float = 0.25,
+                      ) -> Tuple[List[List[Point]], List[List[Point]], Optional[BaseGeometry]]:
+    """The hide region for ``grade`` as (outer rings, obstacle rings) in mm for
+    the parts' true shapes: the material shrunk by ``margin`` from the outline
+    and the defects (zone borders need no margin), then simplified to fewer
+    vertices inside a ``simplify`` mm band (shrunk first, so it never grows)."""
+    outline = Polygon(c.outline)
+    region = usable_region(c, grade)
+    inner = outline.buffer(-margin, 16) if margin > 0 else outline
+    region = region.intersection(inner)
+    for d in c.defects:
+        if margin > 0:
+            region = region.difference(Polygon(d).buffer(margin, 16))
+    if simplify > 0 and not region.is_empty:
+        region = region.buffer(-simplify, 4, join_style=2).simplify(simplify * 0.9)
+    outers: List[List[Point]] = []
+    holes: List[List[Point]] = []
+    for p in polygons_of(region):
+        outers.append(_ccw(list(p.exterior.coords)[:-1]))
+        for r in p.interiors:
+            holes.append(_ccw(list(r.coords)[:-1]))
+    return outers, holes, region

@@ -1,0 +1,502 @@
+"""The recognition stage: Drawing -> Recognition (parts, lead-ins, open chains, flags).
+
+Per group of edges (the whole drawing, or one pattern piece of an AAMA/ASTM
+file -- pieces are never merged):
+
+1. cut edges -> segments (+ FreeCAD curves for ellipses/splines); zero-length and
+   exactly duplicated edges dropped;
+2. graph: end points snapped at ``join_tol``, edges split at T-junctions and at
+   short overshoots, degree-1 edges peeled off into open chains;
+3. under-recognition: open chains that close with bridges <= ``gap_tol``
+   (applied when ``close_gaps``);
+4. closed loops: simple cycles -> closed paths (checked for self-crossing);
+   components with junctions -> FreeCAD arrangement cells (common edges);
+5. over-recognition evidence -> flags; person's include/exclude applied;
+6. containment depth -> parts with holes, islands in holes as parts;
+7. lead-ins / lead-outs / open chains; marks to the part containing them.
+"""
+
+from __future__ import annotations
+
+import gc
+from collections import defaultdict
+from typing import Dict, List, Optional, Set, Tuple
+
+from ..errors import InputError
+from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, Part,
+                     Recognition)
+from ..progress import ProgressFn, report
+from .arrangement import arrange
+from .flags import GapProposal, frame_evidence, gap_proposals
+from .from_part import orient
+from .graph import Graph, Piece
+from .leadins import Chain, assign_lead_outs, chains, classify
+from .loops import Loop, edge_key, mark_shared, outline_problems, simple_loop
+from .nesting_depth import LoopIndex, depths, innermost, parents
+from .options import RecogniseOptions
+from .to_part import describe, to_segment
+from .unfold import unfold_part
+
+
+class _Ids:
+    """Running id counters shared by all groups (P1.., C1.., L1.., O1.., F1..)."""
+
+    def __init__(self) -> None:
+        self.n: Dict[str, int] = defaultdict(int)
+
+    def next(self, prefix: str) -> str:
+        self.n[prefix] += 1
+        return f"{prefix}{self.n[prefix]}"
+
+
+class _Group:
+    """One group of edges recognised on its own."""
+
+    def __init__(self, name: Optional[str], indices: List[int], info=None):
+        self.name = name
+        self.indices = indices
+        self.info = info                 # PieceInfo of a pattern piece, else None
+        self.crossing: List[Tuple[Loop, str]] = []
+        self.overlapping: List[Tuple[Loop, Loop]] = []
+        self.loops: List[Loop] = []
+        self.chains: List[Chain] = []
+        self.gaps: List[GapProposal] = []
+        self.closed_gaps: List[Tuple[GapProposal, List[int]]] = []
+        self.graph: Optional[Graph] = None
+        self.has_grain = False
+
+
+def recognise(drawing: Drawing, options: RecogniseOptions = RecogniseOptions(),
+              progress: Optional[ProgressFn] = None) -> Recognition:
+    """Find the parts, holes, lead-ins, open chains and doubtful contours of a drawing.
+
+    Units mm.  Outer contours come out counter-clockwise, holes clockwise; ids are
+    stable for the same drawing and options (P, C, L, O, F + running number)."""
+    options.validate()
+    # The build allocates hundreds of thousands of small objects that live until
+    # the end; the cyclic collector re-scanning them again and again doubled the
+    # run time of a 10,000-part drawing (measured).  It runs again afterwards.
+    gc_was_on = gc.isenabled()
+    gc.disable()
+    try:
+        return _recognise(drawing, options, progress)
+    finally:
+        if gc_was_on:
+            gc.enable()
+
+
+def _recognise(drawing: Drawing, options: RecogniseOptions,
+               progress: Optional[ProgressFn]) -> Recognition:
+    rec = Recognition(units="mm")
+    ids = _Ids()
+    groups = _groups(drawing)
+    report(progress, 0.0, "recognising contours")
+    for gi, grp in enumerate(groups):
+        lo, hi = gi / len(groups), (gi + 1) / len(groups)
+
+        def step(f: float, msg: str, lo=lo, hi=hi) -> None:
+            report(progress, lo + (hi - lo) * f, msg)
+
+        _build(drawing, grp, options, rec.findings, step)
+        step(0.8, "nesting depth, lead-ins and flags")
+        _emit(drawing, grp, options, ids, rec)
+        step(1.0, f"recognised {gi + 1}/{len(groups)} groups")
+    _apply_part_decisions(rec, options)
+    return rec
+
+
+# ----------------------------------------------------------------------
+def _groups(drawing: Drawing) -> List[_Group]:
+    if not drawing.pieces:
+        return [_Group(None, list(range(len(drawing.edges))))]
+    out = []
+    seen: Set[int] = set()
+    for key, info in drawing.pieces.items():
+        idx = list(getattr(info, "edges", info))
+        out.append(_Group(key, idx, info if hasattr(info, "edges") else None))
+        seen.update(idx)
+    rest = [i for i in range(len(drawing.edges)) if i not in seen]
+    if rest:
+        out.append(_Group(None, rest))
+    return out
+
+
+def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
+           findings: List[Finding], step) -> None:
+    """Steps 1-4: pieces, graph, gaps, loops and chains of one group."""
+    tol = options.join_tol
+    where = f"{drawing.path}" + (f" piece {grp.name!r}" if grp.name else "")
+    pieces: List[Piece] = []
+    keys: Set[Tuple] = set()
+    short = dups = 0
+    for i in grp.indices:
+        e = drawing.edges[i]
+        if e.src.role == "grain":
+            grp.has_grain = True
+        if e.src.role != "cut":
+            continue
+        try:
+            seg, curve = to_segment(e, options.chord_tol)
+        except InputError as exc:
+            findings.append(Finding("warning", "bad-edge", f"edge skipped: {exc.message}",
+                                    f"{drawing.path}: {exc.source or describe(e)}"))
+            continue
+        if seg.length < tol:
+            short += 1
+            continue
+        k = edge_key(seg, tol)
+        if k in keys:
+            dups += 1
+            continue
+        keys.add(k)
+        pieces.append(Piece(i, seg, curve))
+    if short:
+        findings.append(Finding("info", "short-edges-dropped",
+                                f"{short} cut edges shorter than the join tolerance "
+                                f"({tol} mm) dropped", where))
+    if dups:
+        findings.append(Finding("info", "duplicate-edges-dropped",
+                                f"{dups} duplicated cut edges dropped", where))
+    step(0.2, "joining end points")
+    graph = Graph(pieces, tol)
+    grp.graph = graph
+    graph.split_at_dangling_ends(options.gap_tol)
+    graph.peel()
+    # a joint inside an open chain may touch an edge (two lead-ins meeting a
+    # contour at one point): split there too and peel again
+    if graph.split_at_nodes(graph.chain_interior_nodes(), 0.0)[0]:
+        graph.peel()
+    chain_list = chains(graph)
+    grp.gaps = gap_proposals(chain_list, graph, options.gap_tol)
+    for gp in grp.gaps:
+        for ch in gp.chains:
+            ch.kind = "gap"
+    if options.close_gaps and grp.gaps:
+        for k, gp in enumerate(grp.gaps):
+            new = []
+            for b in gp.bridges:
+                new.append(graph.add(Piece(-1 - k, b)))
+            grp.closed_gaps.append((gp, new))
+        graph.peel()
+        chain_list = chains(graph)
+    grp.chains = chain_list
+
+    step(0.4, "building contours")
+    cluster = 0
+    comps = graph.components()
+    for ci, comp in enumerate(comps):
+        if graph.is_simple_cycle(comp):
+            grp.loops.append(simple_loop(graph, comp))
+            continue
+        step(0.4 + 0.4 * ci / len(comps), "splitting common-edge layouts into regions")
+        try:
+            cells, leftovers = arrange(graph, comp, cluster, options.chord_tol, options.fuzzy,
+                                      lambda i: _ident(drawing, i))
+        except Exception as exc:  # noqa: BLE001 - OCC failures surface as many types
+            findings.append(Finding(
+                "warning", "arrangement-failed",
+                f"FreeCAD could not split a group of {len(comp)} connected edges into regions "
+                f"({type(exc).__name__}: {exc}); its edges are reported as open chains",
+                where))
+            for i in comp:
+                pc = graph.pieces[i]
+                grp.chains.append(Chain([pc.seg], -1, -1, [pc.src]))
+            continue
+        cluster += 1
+        for c in cells:
+            lp = c.loop
+            ev = []
+            if not c.drawn and any(cells[j].drawn for j in c.neighbours):
+                ev.append("none of its sides was drawn for it (each is part of a longer line or of another outline) while the regions around it were drawn as their own outlines")
+            width = 2.0 * lp.area / max(lp_length(lp), 1e-12)
+            if width < options.gap_tol:
+                ev.append(f"a sliver {width:.3g} mm wide on average between nearly coincident "
+                          "lines")
+            if c.pinwheel:
+                ev.append("every edge is shared and each corner is a T-junction turning off a "
+                          "line of a neighbouring part (the gap left between parts around it)")
+            if ev:
+                lp.auto_over = True
+                if c.all_shared:
+                    ev.append("every edge is shared with a neighbouring part")
+            lp.evidence = ev
+            grp.loops.append(lp)
+        for seg in leftovers:
+            ch = Chain([seg], -1, -1, [])
+            grp.chains.append(ch)
+    for lp in grp.loops:
+        real = [s for s in lp.srcs if s >= 0]
+        lp.order = (min(real) if real else 1 << 60, lp.bbox[1], lp.bbox[0])
+    grp.loops.sort(key=lambda lp: lp.order)
+    _drop_duplicate_loops(grp, tol, findings, where)
+    for lp in grp.loops:
+        lp.chord_tol = options.chord_tol
+    grp.crossing, grp.overlapping = outline_problems(grp.loops)
+
+
+def lp_length(lp: Loop) -> float:
+    return sum(s.length for s in lp.segs)
+
+
+def _drop_duplicate_loops(grp: _Group, tol: float, findings: List[Finding], where: str) -> None:
+    """Closed outlines drawn twice (not edge by edge identical) are kept once."""
+    seen: Dict[Tuple, Loop] = {}
+    keep = []
+    q = max(tol * 10, 1e-6)
+    for lp in grp.loops:
+        k = tuple(round(v / q) for v in lp.bbox) + (round(lp.area / max(q, lp.area * 1e-4)),)
+        if k in seen and lp.cluster is None:
+            findings.append(Finding("info", "duplicate-contour",
+                                    "a closed outline drawn twice was kept once", where))
+            continue
+        seen[k] = lp
+        keep.append(lp)
+    grp.loops = keep
+
+
+# ----------------------------------------------------------------------
+def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
+          rec: Recognition) -> None:
+    """Steps 5-7 for one group, appending to ``rec``."""
+    tol = options.join_tol
+    loops = grp.loops
+    for lp in loops:
+        lp.contour_id = ids.next("C")
+
+    for lp, why in grp.crossing:
+        rec.findings.append(Finding("warning", "self-intersecting-contour",
+                                    f"contour {lp.contour_id} crosses itself ({why}); it is cut "
+                                    "as drawn", drawing.path))
+    for a, b in grp.overlapping:
+        rec.findings.append(Finding("warning", "crossing-contours",
+                                    f"contours {a.contour_id} and {b.contour_id} cross each "
+                                    "other: the parts overlap", drawing.path))
+
+    # frame / group outline evidence needs the containment tree
+    par = parents(loops, tol)
+    children: Dict[int, List[int]] = defaultdict(list)
+    for i, p in enumerate(par):
+        if p is not None:
+            children[p].append(i)
+    for i, lp in enumerate(loops):
+        kids = children.get(i, [])
+        why = frame_evidence(sum(1 for k in kids if children.get(k)), len(kids))
+        if why:
+            lp.auto_over = True
+            lp.evidence.append(why)
+
+    changed = False
+    for lp in loops:
+        cid = lp.contour_id
+        lp.excluded = lp.auto_over
+        if cid in options.include:
+            lp.excluded = False
+        if cid in options.exclude:
+            lp.excluded = True
+        changed |= lp.excluded
+    active = [i for i, lp in enumerate(loops) if not lp.excluded]
+    if changed:
+        sub = [loops[i] for i in active]
+        sub_par = parents(sub, tol)
+        par = [None] * len(loops)
+        for k, i in enumerate(active):
+            par[i] = None if sub_par[k] is None else active[sub_par[k]]
+    depth = depths(par, loops)
+
+    # orientation: outers CCW, holes CW
+    for i, lp in enumerate(loops):
+        ccw = lp.excluded or depth[i] % 2 == 0
+        lp.segs = orient(lp.segs, ccw)
+    mark_shared(loops, max(tol, 1e-6))
+
+    layer = _layer_of(drawing)
+    contour_of: Dict[int, Contour] = {}
+    for i, lp in enumerate(loops):
+        contour_of[i] = Contour(lp.contour_id, lp.segs, layer(lp.srcs), list(lp.shared_idx))
+
+    # over flags
+    for lp in loops:
+        if lp.evidence:
+            decided = (None if lp.contour_id not in options.include | options.exclude
+                       else lp.contour_id in options.exclude)
+            rec.flags.append(Flag(ids.next("F"), "over", [lp.contour_id],
+                                  "; ".join(lp.evidence), accepted=decided))
+
+    # parts
+    part_of_loop: Dict[int, Part] = {}
+    order = sorted(range(len(loops)), key=lambda i: _num(loops[i].contour_id))
+    for i in order:
+        if loops[i].excluded or depth[i] % 2 == 0:
+            part = Part(ids.next("P"), contour_of[i], excluded=loops[i].excluded)
+            if grp.name is not None:
+                _piece_fields(part, drawing, grp)
+            part_of_loop[i] = part
+    for i in order:
+        if not loops[i].excluded and depth[i] % 2 == 1:
+            owner = part_of_loop[par[i]]
+            owner.holes.append(contour_of[i])
+            part_of_loop[i] = owner
+    for i, part in part_of_loop.items():
+        p = par[i]
+        if part.outer is contour_of[i] and p is not None and depth[i] > 0:
+            part.parent_id = part_of_loop[p].id
+
+    # chains: lead-ins, lead-outs, open chains
+    node_loops: Dict[int, List[int]] = defaultdict(list)
+    for i in sorted(range(len(loops)), key=lambda i: loops[i].excluded):
+        for n in loops[i].nodes:
+            node_loops[n].append(i)
+    graph = grp.graph
+    classify(grp.chains, graph, node_loops, options.gap_tol, loops)
+    by_loop: Dict[int, List[Chain]] = defaultdict(list)
+    for ch in grp.chains:
+        if ch.kind == "lead_in":
+            by_loop[ch.contour].append(ch)
+    assign_lead_outs(by_loop, {i: loops[i].segs for i in by_loop})
+    for li, chs in sorted(by_loop.items(), key=lambda t: _num(loops[t[0]].contour_id)):
+        part = part_of_loop[li]
+        for ch in sorted(chs, key=lambda c: min(c.srcs) if c.srcs else 0):
+            part.lead_ins.append(LeadIn(ids.next("L"), loops[li].contour_id, ch.segs, ch.kind))
+    opens = [ch for ch in grp.chains if ch.kind in ("open", "overshoot", "gap")]
+    opens.sort(key=lambda c: (min(c.srcs) if c.srcs else 1 << 60))
+    for ch in opens:
+        if ch.kind == "overshoot" and options.close_gaps:
+            continue
+        ch.id = ids.next("O")
+        rec.open_chains.append(OpenChain(ch.id, ch.segs, layer(ch.srcs)))
+
+    # under flags
+    for gp in grp.gaps:
+        if options.close_gaps:
+            continue
+        reason = (f"open outline of {len(gp.chains)} chain(s) closes with "
+                  f"{len(gp.bridges)} bridging segment(s), largest gap {gp.gap:.4g} mm "
+                  f"(gap tolerance {options.gap_tol} mm)")
+        rec.flags.append(Flag(ids.next("F"), "under", sorted((c.id for c in gp.chains), key=_num),
+                              reason,
+                              gap=gp.gap, fix=list(gp.bridges)))
+    for k, (gp, _) in enumerate(grp.closed_gaps):
+        made = [loops[i].contour_id for i in range(len(loops)) if (-1 - k) in loops[i].srcs]
+        reason = (f"gap of {gp.gap:.4g} mm closed with {len(gp.bridges)} bridging segment(s) "
+                  f"(--close-gaps)")
+        rec.flags.append(Flag(ids.next("F"), "under", made, reason, gap=gp.gap,
+                              fix=list(gp.bridges), accepted=True))
+    for ch in sorted(grp.chains, key=lambda c: (c.id == "", _num(c.id) if c.id else 0)):
+        if ch.kind != "overshoot":
+            continue
+        cont = [loops[i].contour_id for i in node_loops.get(ch.b, [])][:1]
+        reason = (f"{ch.length:.4g} mm stub hangs off the contour (a line running past a corner "
+                  f"or a drawing artefact, no longer than the gap tolerance); fix: trim it")
+        rec.flags.append(Flag(ids.next("F"), "under", cont if options.close_gaps else [ch.id],
+                              reason, gap=ch.length, fix=[],
+                              accepted=True if options.close_gaps else None))
+
+    # marks
+    _place_marks(drawing, grp, loops, part_of_loop, depth, tol, rec)
+    line = getattr(grp.info, "mirror_line", None) if grp.info is not None else None
+    if line is not None:
+        _unfold(grp, line, part_of_loop, depth, options, ids, rec, drawing.path)
+    rec.parts.extend(sorted({id(p): p for p in part_of_loop.values()}.values(),
+                            key=lambda p: _num(p.id)))
+
+
+def _unfold(grp: _Group, line, part_of_loop: Dict[int, Part], depth: List[int],
+            options: RecogniseOptions, ids: _Ids, rec: Recognition, path: str) -> None:
+    """Unfold the top-level parts of a half piece about its fold line."""
+    where = f"{path} piece {grp.name!r}"
+    if not options.unfold:
+        rec.findings.append(Finding("warning", "half-piece",
+                                    "piece is drawn as a half against a fold line and was not "
+                                    "unfolded (unfolding is off)", where))
+        return
+    tol = max(options.join_tol, 1e-3)
+    for i, part in part_of_loop.items():
+        if depth[i] != 0 or part.excluded or part.outer.id != grp.loops[i].contour_id:
+            continue
+        why = unfold_part(part, line, tol, lambda: ids.next("C"))
+        if why is None:
+            rec.findings.append(Finding("info", "unfolded",
+                                        f"{part.id} unfolded about the fold line", where))
+        else:
+            rec.findings.append(Finding("warning", "half-piece",
+                                        f"{part.id} has a fold line but was not unfolded: {why}",
+                                        where))
+
+
+def _place_marks(drawing: Drawing, grp: _Group, loops: List[Loop],
+                 part_of_loop: Dict[int, Part], depth: List[int], tol: float,
+                 rec: Recognition) -> None:
+    if grp.info is not None:
+        marks: List[Mark] = [drawing.marks[i] for i in grp.info.marks
+                             if drawing.marks[i].src.role in ("mark", "cut", "")]
+    elif drawing.pieces:
+        marks = [m for m in drawing.marks if not getattr(m.src, "piece", "")
+                 and m.src.role not in ("ignore", "annotation")]
+    else:
+        marks = [m for m in drawing.marks if m.src.role not in ("ignore", "annotation")]
+    if not marks:
+        return
+    active = {i for i, lp in enumerate(loops) if not lp.excluded}
+    index = LoopIndex(loops)
+    for i, lp in enumerate(loops):
+        index.add(i, lp.bbox)
+    lost = 0
+    for m in marks:
+        j = innermost(loops, index, m.position, tol, active)
+        if j is None or depth[j] % 2 == 1:
+            lost += 1
+            continue
+        part_of_loop[j].marks.append(m)
+    if lost:
+        rec.findings.append(Finding("info", "mark-outside-parts",
+                                    f"{lost} marks lie outside every part and were not assigned",
+                                    drawing.path + (f" piece {grp.name!r}" if grp.name else "")))
+
+
+def _apply_part_decisions(rec: Recognition, options: RecogniseOptions) -> None:
+    """Part ids in include/exclude decide the whole part (with its holes)."""
+    for p in rec.parts:
+        if p.id in options.exclude:
+            p.excluded = True
+        elif p.id in options.include:
+            p.excluded = False
+    known = {p.id for p in rec.parts} | {c.id for p in rec.parts for c in p.contours()}
+    unknown = sorted((set(options.include) | set(options.exclude)) - known)
+    if unknown:
+        rec.findings.append(Finding("warning", "unknown-id",
+                                    "include/exclude ids not found: " + ", ".join(unknown),
+                                    "--include/--exclude"))
+
+
+def _layer_of(drawing: Drawing):
+    def layer(srcs) -> str:
+        real = [s for s in srcs if s >= 0]
+        return drawing.edges[min(real)].src.layer if real else ""
+    return layer
+
+
+def _piece_fields(part: Part, drawing: Drawing, grp: _Group) -> None:
+    """Name, quantity and allowed rotations of a pattern piece's part: with a
+    grain line the piece may only turn by 0 or 180 degrees (grain kept parallel)."""
+    info = grp.info
+    if info is None:
+        part.name = grp.name or ""
+        if grp.has_grain:
+            part.rotations = [0.0, 180.0]
+        return
+    part.name = info.name + (f" size {info.size}" if getattr(info, "size", "") else "")
+    part.quantity = max(1, int(getattr(info, "quantity", 1) or 1))
+    if getattr(info, "grain_angle", None) is not None or grp.has_grain:
+        part.rotations = [0.0, 180.0]
+
+
+def _ident(drawing: Drawing, i: int):
+    """The drawn entity of edge ``i``: its DXF handle, else the edge itself."""
+    if i < 0:
+        return ("bridge", i)
+    h = drawing.edges[i].src.handle
+    return ("h", h) if h else ("e", i)
+
+
+def _num(ident: str) -> int:
+    return int(ident[1:])

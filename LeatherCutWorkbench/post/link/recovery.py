@@ -1,0 +1,136 @@
+"""Which lines of a job the machine really executed, from its journal.
+
+GRBL acknowledges a motion line when it enters the planner, so *acknowledged*
+is not *executed*: after a stop with a soft reset the moves still queued are
+dropped.  For every run of the job (the first stream and each resume) this
+module decides what was executed, with the best evidence the journal holds:
+
+1. ``done``: the run finished -- every acknowledged line was executed;
+2. ``position``: the stop was clean (feed hold, then reset while not moving,
+   or a soft-limit alarm) and the controller reported where the tool stopped.
+   The job is traced with the G-code interpreter and the first acknowledged
+   move (after the last synchronising line) whose path contains that position
+   is where the machine stopped: lines before it were executed, that move and
+   everything after it were not (a move the tool stopped at the very end of
+   counts as executed);
+3. ``sync``: otherwise (power loss, disconnect, reset while moving) only what
+   a synchronising line proves: GRBL acknowledges ``G4`` and the spindle and
+   coolant words ``M3 M4 M5 M7 M8 M9`` only after the planner ran empty, so
+   every acknowledged line up to the last acknowledged one of those was
+   executed.  The item being cut may then be cut again from its start (its
+   slit is retraced), which is the price of not losing anything.
+
+Lines a controller refused (``error:N``) are never acknowledged and so never
+executed: their segment is cut again even when later segments were executed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Dict, List, Optional, Sequence, Set, Tuple
+
+from ..gcode_reader import GcodeError, Interpreter, TraceMove, strip_line
+
+SYNC_LINE = re.compile(r"^(N\d+)?(G4P|M[345789](?!\d))")
+STOP_EVENTS = ("error", "alarm", "reset", "stalled", "lost", "aborted", "check-failed")
+
+
+def trace_lines(source: Sequence[str], axes: str, wrapped: str, turn: float
+                ) -> Dict[int, List[TraceMove]]:
+    """Motion moves of every line (0-based index) of a program."""
+    it = Interpreter(axes, wrapped, turn)
+    out: Dict[int, List[TraceMove]] = {}
+    for i, line in enumerate(source):
+        try:
+            moves = it.execute(line, i + 1)
+        except GcodeError:
+            continue                    # the controller refused it too: never executed
+        motion = [m for m in moves if m.kind in ("rapid", "line", "arc")]
+        if motion:
+            out[i] = motion
+    return out
+
+
+def _tolerances(axes: str, rotary: str) -> Dict[str, float]:
+    return {a: (0.05 if a == rotary or a in "ABC" else 0.02) for a in axes}
+
+
+def locate(move: TraceMove, pos: Dict[str, float], tol: Dict[str, float]) -> Optional[float]:
+    """Fraction t in [0, 1] of ``move`` at which the tool is at ``pos``, or None
+    when ``pos`` is not on the move's path (all axes within ``tol``)."""
+    axes = [a for a in pos if a in move.start]
+    if move.kind == "arc":
+        cx, cy = move.center
+        r = math.hypot(move.start["X"] - cx, move.start["Y"] - cy)
+        if abs(math.hypot(pos["X"] - cx, pos["Y"] - cy) - r) > tol["X"]:
+            return None
+        a0 = math.atan2(move.start["Y"] - cy, move.start["X"] - cx)
+        a1 = math.atan2(move.end["Y"] - cy, move.end["X"] - cx)
+        ap = math.atan2(pos["Y"] - cy, pos["X"] - cx)
+        if move.ccw:
+            sweep, rel = (a1 - a0) % (2 * math.pi), (ap - a0) % (2 * math.pi)
+        else:
+            sweep, rel = (a0 - a1) % (2 * math.pi), (a0 - ap) % (2 * math.pi)
+        if sweep < 1e-12:
+            sweep = 2 * math.pi
+        slack = tol["X"] / max(r, 1e-9)
+        if rel > sweep + slack:
+            if 2 * math.pi - rel <= slack:
+                rel = 0.0
+            else:
+                return None
+        t = min(rel / sweep, 1.0)
+        others = [a for a in axes if a not in ("X", "Y")]
+    else:
+        deltas = {a: move.end[a] - move.start[a] for a in axes}
+        lead = max(axes, key=lambda a: abs(deltas[a]) / tol[a])
+        if abs(deltas[lead]) < 1e-12:
+            t = 0.0
+        else:
+            t = min(max((pos[lead] - move.start[lead]) / deltas[lead], 0.0), 1.0)
+        others = axes
+    for a in others:
+        want = move.start[a] + t * (move.end[a] - move.start[a])
+        if abs(pos[a] - want) > tol[a]:
+            return None
+    return t
+
+
+def executed_in_run(run: Dict, motion: Dict[int, List[TraceMove]], source: Sequence[str],
+                    tol: Dict[str, float]) -> Tuple[Set[int], str]:
+    """(executed line indices, basis) of one run; see the module docstring."""
+    acked: List[int] = run["acked"]
+    acked_set = set(acked)
+    end = run.get("end")
+    if end is not None and end.get("e") == "done":
+        return acked_set, "done"
+    syncs = [i for i in acked if SYNC_LINE.match(strip_line(source[i]))]
+    last_sync = max(syncs) if syncs else -1
+    pos = end.get("position") if end else None
+    if pos and end.get("position_trusted"):
+        for i in sorted(acked_set):
+            if i <= last_sync or i not in motion:
+                continue
+            for k, mv in enumerate(motion[i]):
+                t = locate(mv, pos, tol)
+                if t is None:
+                    continue
+                at_end = t >= 1.0 - 1e-9 and k == len(motion[i]) - 1
+                stop = i + 1 if at_end else i
+                return {j for j in acked_set if j < stop}, "position"
+    return {j for j in acked_set if j <= last_sync}, "sync"
+
+
+def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapped: str,
+                   turn: float, rotary: str) -> Tuple[Set[int], List[str]]:
+    """Union of the executed lines of every run, and the basis of each run."""
+    motion = trace_lines(source, axes, wrapped, turn)
+    tol = _tolerances(axes, rotary)
+    done: Set[int] = set()
+    bases: List[str] = []
+    for run in runs:
+        lines, basis = executed_in_run(run, motion, source, tol)
+        done |= lines
+        bases.append(basis)
+    return done, bases

@@ -1,0 +1,162 @@
+"""Safety before output: refuse a job that would drive the machine wrong.
+
+Checks, in this order, and raises :class:`~..core.errors.SafetyError` naming the
+move (item, segment, coordinates) or the output line at the first violation:
+
+1. every move (travel, cut, and the full extent of arcs) lies inside the table
+   ``[0, W] x [0, H]`` mm of the profile;
+2. every feed is positive and at most ``max_feed`` mm/min;
+3. every word of every output line is one the dialect understands: the
+   dialect's G and M codes, its parameter letters and only the axes both the
+   dialect and the profile have (stock GRBL 1.1 has X, Y and Z only, so a ``C``
+   word is refused), and the line fits ``max_line_length``.
+
+Writers call it before they return text, so a refused job writes and sends
+nothing.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Dict, FrozenSet, List, Sequence
+
+from ..core.errors import SafetyError
+from .gcode_reader import GcodeError, parse_words, strip_line
+from .profiles import MachineProfile
+from .toolpath import Move, Toolpath
+
+_GRBL_G = frozenset({0, 1, 2, 3, 4, 10, 17, 18, 19, 20, 21, 28, 28.1, 30, 30.1, 38.2, 38.3,
+                     38.4, 38.5, 40, 43.1, 49, 53, 54, 55, 56, 57, 58, 59, 61, 80, 90, 91,
+                     91.1, 92, 92.1, 93, 94})
+_LINUXCNC_G = _GRBL_G | frozenset({5, 5.1, 5.2, 7, 8, 33, 33.1, 41, 41.1, 42, 42.1, 43, 43.2,
+                                   52, 59.1, 59.2, 59.3, 61.1, 64, 73, 76, 81, 82, 83, 84, 85,
+                                   86, 87, 88, 89, 90.1, 92.2, 92.3, 95, 96, 97, 98, 99})
+
+#: What each dialect understands: G codes, M codes, non-axis letters, axes.
+DIALECT_WORDS: Dict[str, Dict[str, FrozenSet]] = {
+    "grbl": {"G": _GRBL_G, "M": frozenset({0, 1, 2, 3, 4, 5, 8, 9, 30, 56}),
+             "letters": frozenset("FIJKLNPRST"), "axes": frozenset("XYZ")},
+    "grblhal": {"G": _GRBL_G | frozenset({5, 33, 43, 51, 61.1, 64, 73, 76, 81, 82, 83, 85, 86,
+                                          89, 95, 96, 97, 98, 99}),
+                "M": frozenset({0, 1, 2, 3, 4, 5, 7, 8, 9, 30, 48, 49, 50, 51, 53, 56, 60,
+                                61, 62, 63, 64, 65, 66, 67, 68}),
+                "letters": frozenset("DEFHIJKLNPQRST"), "axes": frozenset("XYZABCUVW")},
+    "linuxcnc": {"G": _LINUXCNC_G,
+                 "M": frozenset(set(range(0, 10)) | {30, 48, 49, 50, 51, 52, 53, 60, 61, 62,
+                                                     63, 64, 65, 66, 67, 68, 70, 71, 72, 73}
+                                | set(range(100, 200))),
+                 "letters": frozenset("DEFHIJKLNPQRST"), "axes": frozenset("XYZABCUVW")},
+}
+
+
+def _where(m: Move, tp: Toolpath) -> str:
+    if m.item:
+        label = tp.item_labels[m.item - 1] if m.item - 1 < len(tp.item_labels) else ""
+        seg = f" segment {m.seg}" if m.seg else ""
+        return f"item {m.item} ({label}){seg}"
+    return "travel outside any item"
+
+
+def check_moves(tp: Toolpath, profile: MachineProfile) -> None:
+    """Table limits and feeds of every neutral move."""
+    xmin, ymin, xmax, ymax = profile.table_limits()
+    tol = 1e-6
+    for m in tp.moves:
+        if m.kind not in ("rapid", "line", "arc"):
+            continue
+        if m.kind == "rapid" and not m.item:
+            continue        # the return to machine zero (plan.home) is always reachable
+        pts = [(m.x, m.y)]
+        if m.kind == "arc":
+            pts += _arc_extremes(m)
+        for x, y in pts:
+            if not (xmin - tol <= x <= xmax + tol and ymin - tol <= y <= ymax + tol):
+                raise SafetyError(
+                    f"{m.kind} to ({m.x:.3f}, {m.y:.3f}) mm reaches ({x:.3f}, {y:.3f}), outside "
+                    f"the table {xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name}",
+                    source=_where(m, tp))
+        if not (0 < m.feed <= profile.max_feed):
+            raise SafetyError(
+                f"{m.kind} feed {m.feed:g} mm/min is outside 0..{profile.max_feed:g} mm/min "
+                f"of {profile.name}", source=_where(m, tp))
+
+
+def _arc_extremes(m: Move) -> List[tuple]:
+    """Points of the arc at the compass directions it passes (its bbox)."""
+    cx, cy = m.center
+    r = math.hypot(m.start[0] - cx, m.start[1] - cy)
+    a0 = math.degrees(math.atan2(m.start[1] - cy, m.start[0] - cx))
+    a1 = math.degrees(math.atan2(m.y - cy, m.x - cx))
+    sweep = (a1 - a0) % 360.0 if m.ccw else -((a0 - a1) % 360.0)
+    out = []
+    for k in range(4):
+        ang = 90.0 * k
+        rel = (ang - a0) % 360.0 if sweep > 0 else (a0 - ang) % 360.0
+        if rel <= abs(sweep):
+            out.append((cx + r * math.cos(math.radians(ang)), cy + r * math.sin(math.radians(ang))))
+    return out
+
+
+def check_lines(lines: Sequence[str], profile: MachineProfile) -> None:
+    """Every word of every line must be known to the dialect and the machine;
+    feeds within the profile; lines no longer than ``max_line_length``."""
+    words = DIALECT_WORDS[profile.dialect]
+    axes = set(profile.axes) & set(words["axes"])
+    for n, line in enumerate(lines, 1):
+        block = strip_line(line)
+        if not block:
+            continue
+        where = f"output line {n} {line.strip()!r}"
+        if len(block) > profile.max_line_length:
+            raise SafetyError(f"{len(block)} characters, more than {profile.max_line_length} "
+                              f"{profile.dialect} accepts", source=where)
+        try:
+            parsed = parse_words(block, n)
+        except GcodeError as exc:
+            raise SafetyError(f"not G-code: {exc.message}", source=where)
+        for letter, v in parsed:
+            if letter in ("G", "M"):
+                code = round(v, 1) if letter == "G" else v
+                if code not in words[letter]:
+                    raise SafetyError(f"{letter}{v:g} is not understood by {profile.dialect}",
+                                      source=where)
+            elif letter in "XYZABCUVW":
+                if letter not in axes:
+                    have = "".join(sorted(axes, key="XYZABCUVW".index))
+                    raise SafetyError(f"word {letter} names an axis {profile.dialect} / "
+                                      f"{profile.name} does not have (axes {have})", source=where)
+            elif letter not in words["letters"]:
+                raise SafetyError(f"word {letter} is not understood by {profile.dialect}",
+                                  source=where)
+            if letter == "F" and not (0 < v <= profile.max_feed):
+                raise SafetyError(f"feed F{v:g} is outside 0..{profile.max_feed:g} mm/min",
+                                  source=where)
+
+
+def check_program(lines: Sequence[str], profile: MachineProfile, name: str = "") -> None:
+    """A ready G-code program (e.g. a ``.nc`` file to send): every word known to
+    the dialect (:func:`check_lines`), and every move, traced by the
+    interpreter, inside the table (plan coordinates = machine minus origin)."""
+    from .gcode_reader import interpreter_for
+
+    check_lines(lines, profile)
+    it = interpreter_for(profile)
+    xmin, ymin, xmax, ymax = profile.table_limits()
+    ox, oy = profile.origin
+    for n, line in enumerate(lines, 1):
+        try:
+            moves = it.execute(line, n)
+        except GcodeError as exc:
+            raise SafetyError(f"not accepted: {exc.message}", source=f"{name} line {n}")
+        for m in moves:
+            if m.kind not in ("rapid", "line", "arc"):
+                continue
+            pts = [(m.end["X"], m.end["Y"])]
+            if m.kind == "arc":
+                pts += _arc_extremes(Move("arc", x=m.end["X"], y=m.end["Y"], center=m.center,
+                                          ccw=m.ccw, start=(m.start["X"], m.start["Y"])))
+            for x, y in pts:
+                if not (xmin - 1e-6 <= x - ox <= xmax + 1e-6 and ymin - 1e-6 <= y - oy <= ymax + 1e-6):
+                    raise SafetyError(
+                        f"move to ({m.end['X']:.3f}, {m.end['Y']:.3f}) reaches ({x:.3f}, {y:.3f}), "
+                        f"outside the table of {profile.name}", source=f"{name} line {n}")

@@ -1,0 +1,257 @@
+"""CutPlan -> neutral moves: the one machine-independent job every writer reads.
+
+A :class:`Move` is a rapid, a straight or circular cut, a knife/torch up or down,
+a turn of the knife in the air, an I/O event, a dwell or a sync point.  Every
+move carries the id of the plan segment it belongs to (``"<item>:<segment>"``,
+both 1-based, the id the live link journals and resumes from; ``""`` for moves
+between segments such as the header or the lift after an item).
+
+Knife heading (tangential knives only): the heading of the path tangent in
+degrees (0 = +X, counter-clockwise positive) plus the profile's
+``heading_offset``, kept *continuous* (unwrapped): every change takes the short
+way round (|turn| <= 180 degrees).  Writers convert it to axis units and, for a
+wrapped LinuxCNC axis, to the sign-selects-direction form.
+
+Lifts: the profile is authoritative for the machine, so the knife is lifted,
+turned in the air and plunged again before every joint whose heading change
+exceeds ``profile.lift_angle``; the planner's ``CutItem.lifts`` are honoured as
+well (the union of both is used), so a planner run with a smaller angle can only
+add lifts, never remove one the machine needs.  Torches and drag knives never
+lift inside an item.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import List, Optional, Sequence, Tuple
+
+from ..core.geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment, dist, turn_angle
+from ..core.model import CutItem, CutPlan
+from .profiles import MachineProfile
+
+#: Longest arc piece (degrees of sweep) a tangential knife gets in one move.
+#: Keeps a wrapped rotary axis unambiguous (< 180) and rotary feed moderate.
+MAX_TANGENTIAL_ARC_SWEEP = 90.0
+
+
+@dataclass
+class Move:
+    """One neutral move.  Coordinates are plan coordinates in mm (the writer adds
+    the profile origin); ``heading`` is the continuous knife angle in degrees at
+    the end of the move (None for tools without a heading axis)."""
+
+    kind: str                      # rapid | line | arc | up | down | turn | io | dwell | sync
+    seg: str = ""                  # "<item>:<segment>" or "" between segments
+    x: float = 0.0
+    y: float = 0.0
+    heading: Optional[float] = None
+    center: Optional[Point] = None  # arc centre (mm)
+    ccw: bool = True                # arc direction
+    feed: float = 0.0               # mm/min for rapid/line/arc
+    name: str = ""                  # io: vacuum_on, tool_off, ...; comment text
+    seconds: float = 0.0            # dwell
+    item: int = 0                   # 1-based item index (0 = none)
+    start: Point = (0.0, 0.0)       # where the move begins (mm)
+
+
+@dataclass
+class Toolpath:
+    """Neutral job: moves in order plus the segment ids in cutting order."""
+
+    moves: List[Move] = field(default_factory=list)
+    segment_ids: List[str] = field(default_factory=list)
+    item_labels: List[str] = field(default_factory=list)
+
+
+def seg_id(item_index: int, seg_index: int) -> str:
+    """Segment id used by writers, the journal and ``--resume-from`` (1-based)."""
+    return f"{item_index}:{seg_index}"
+
+
+def shortest_heading(current: Optional[float], target: float) -> float:
+    """``target`` (degrees, any range) re-expressed near ``current`` so the turn
+    takes the short way: the result differs from ``current`` by at most 180."""
+    if current is None:
+        return (target + 180.0) % 360.0 - 180.0
+    d = (target - current + 180.0) % 360.0 - 180.0
+    return current + d
+
+
+def _pieces(seg: Segment, profile: MachineProfile) -> List[Segment]:
+    """Split a segment into the pieces one machine move each can follow:
+    polylines into lines, arcs into lines (profile ``arcs == "split"``, within
+    ``chord_tol``) or, for a tangential knife, arcs of at most 90 degrees."""
+    if isinstance(seg, LineSeg):
+        return [seg]
+    if isinstance(seg, CurveSeg):
+        return [LineSeg(a, b) for a, b in zip(seg.pts, seg.pts[1:]) if dist(a, b) > 1e-9]
+    if isinstance(seg, ArcSeg):
+        if profile.arcs == "split" or profile.dialect == "hpgl":
+            pts = seg.points(profile.chord_tol)
+            return [LineSeg(a, b) for a, b in zip(pts, pts[1:])]
+        limit = MAX_TANGENTIAL_ARC_SWEEP if profile.tangential else 180.0
+        n = max(1, int(math.ceil(abs(seg.sweep) / limit - 1e-9)))
+        step = seg.sweep / n
+        return [ArcSeg(seg.center, seg.radius, seg.start_angle + k * step, step)
+                for k in range(n)]
+    raise TypeError(f"unknown segment type {type(seg).__name__}")
+
+
+def _overcut(item: CutItem, length: float) -> List[Segment]:
+    """The first ``length`` mm of a closed contour (after its lead-in), cut again
+    past the entry so the start and end of the cut overlap."""
+    contour = item.segments[item.lead_in_count:]
+    out: List[Segment] = []
+    left = length
+    for seg in contour:
+        if left <= 1e-9:
+            break
+        if seg.length <= left:
+            out.append(seg)
+            left -= seg.length
+        else:
+            out.append(seg.split_at(left)[0])
+            left = 0.0
+    return out
+
+
+def _is_closed(item: CutItem) -> bool:
+    contour = item.segments[item.lead_in_count:]
+    return item.kind in ("outer", "hole") and bool(contour) and \
+        dist(contour[0].start, contour[-1].end) < 1e-6
+
+
+def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[float] = None
+                   ) -> Toolpath:
+    """Turn ``plan`` into neutral moves for ``profile``.
+
+    ``overcut`` (mm, default the profile's) re-cuts the start of every closed
+    contour.  Invariants: the knife is down only during line/arc moves; every
+    rapid starts with the knife up; headings change by at most 180 degrees per
+    move; with a tangential knife no joint inside a cut turns by more than the
+    lift angle without an up/turn/down."""
+    tp = Toolpath()
+    mv = tp.moves
+    tangential = profile.tangential
+    oc = profile.overcut if overcut is None else overcut
+    here: Point = plan.home
+    heading: Optional[float] = None
+
+    def add(kind: str, **kw) -> Move:
+        m = Move(kind, start=here, **kw)
+        mv.append(m)
+        return m
+
+    for name in ("vacuum_on", "press_on"):
+        if getattr(profile, name):
+            add("io", name=name)
+    if profile.settle_dwell > 0 and (profile.vacuum_on or profile.press_on):
+        add("dwell", seconds=profile.settle_dwell)
+
+    for i, item in enumerate(plan.items, 1):
+        tp.item_labels.append(f"{item.kind} {item.part_id}/{item.contour_id}")
+        segs = list(item.segments)
+        ids = [seg_id(i, j) for j in range(1, len(segs) + 1)]
+        tp.segment_ids.extend(ids)
+        lift_before = set(item.lifts)
+        extra: List[Segment] = _overcut(item, oc) if oc > 0 and _is_closed(item) else []
+        work: List[Tuple[Segment, str, bool]] = [
+            (s, ids[j], j in lift_before) for j, s in enumerate(segs)]
+        work += [(s, ids[-1], False) for s in extra]
+        if not work:
+            continue
+        first_pieces = _pieces(work[0][0], profile)
+        if not first_pieces:
+            continue
+        h0 = first_pieces[0].start_heading() + profile.heading_offset if tangential else None
+        # travel with the knife up, pre-rotated to the first heading; the axis
+        # unwinds in the air once it is more than a turn away from zero
+        if tangential:
+            heading = shortest_heading(heading, h0)
+            if abs(heading) > 360.0:
+                heading = shortest_heading(None, h0)
+        start = first_pieces[0].start
+        add("rapid", seg=ids[0], x=start[0], y=start[1], heading=heading,
+            feed=profile.rapid_feed, item=i)
+        here = start
+        if profile.tool_on:
+            add("io", seg=ids[0], name="tool_on", item=i)
+        add("down", seg=ids[0], item=i)
+        if profile.pierce_delay > 0:
+            add("dwell", seg=ids[0], seconds=profile.pierce_delay, item=i)
+        first = True
+        for seg, sid, planned_lift in work:
+            for k, piece in enumerate(_pieces(seg, profile)):
+                if piece.length <= 1e-9:
+                    continue
+                if tangential:
+                    h_start = piece.start_heading() + profile.heading_offset
+                    turn = turn_angle(heading, h_start) if heading is not None else 0.0
+                    if not first and (turn > profile.lift_angle + 1e-9
+                                      or (planned_lift and k == 0)):
+                        add("up", seg=sid, item=i)
+                        heading = shortest_heading(heading, h_start)
+                        add("turn", seg=sid, x=here[0], y=here[1], heading=heading, item=i)
+                        add("down", seg=sid, item=i)
+                    else:
+                        heading = shortest_heading(heading, h_start)
+                first = False
+                end = piece.end
+                if isinstance(piece, ArcSeg):
+                    if tangential:
+                        heading = heading + piece.sweep
+                    add("arc", seg=sid, x=end[0], y=end[1], heading=heading,
+                        center=piece.center, ccw=piece.sweep > 0, feed=profile.cut_feed, item=i)
+                else:
+                    add("line", seg=sid, x=end[0], y=end[1], heading=heading,
+                        feed=profile.cut_feed, item=i)
+                here = end
+        add("up", item=i)
+        if profile.cooling_delay > 0:
+            add("dwell", seconds=profile.cooling_delay, item=i)
+        if profile.tool_off:
+            add("io", name="tool_off", item=i)
+        if profile.sync_at_items:
+            add("sync", item=i)
+
+    add("rapid", x=plan.home[0], y=plan.home[1], heading=heading, feed=profile.rapid_feed)
+    here = plan.home
+    for name in ("press_off", "vacuum_off"):
+        if getattr(profile, name):
+            add("io", name=name)
+    return tp
+
+
+def cut_polylines(tp: Toolpath, chord_tol: float = 0.01) -> List[List[Point]]:
+    """Knife-down paths of a toolpath as polylines (mm), for previews and tests."""
+    out: List[List[Point]] = []
+    cur: Optional[List[Point]] = None
+    down = False
+    for m in tp.moves:
+        if m.kind == "down":
+            down = True
+            cur = None
+        elif m.kind == "up":
+            down = False
+            cur = None
+        elif m.kind in ("line", "arc") and down:
+            if cur is None:
+                cur = [m.start]
+                out.append(cur)
+            if m.kind == "line":
+                cur.append((m.x, m.y))
+            else:
+                c = m.center
+                r = dist(c, m.start)
+                a0 = math.degrees(math.atan2(m.start[1] - c[1], m.start[0] - c[0]))
+                a1 = math.degrees(math.atan2(m.y - c[1], m.x - c[0]))
+                sweep = (a1 - a0) % 360.0 if m.ccw else -((a0 - a1) % 360.0)
+                arc = ArcSeg(c, r, a0, sweep)
+                cur.extend(arc.points(chord_tol)[1:])
+    return out
+
+
+def plan_segments(plan: CutPlan) -> List[Sequence[Segment]]:
+    """The plan's cut segments, item by item (what a traced job must reproduce)."""
+    return [list(it.segments) for it in plan.items]

@@ -1,0 +1,1203 @@
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
+<TS version="2.1">
+<context>
+    <name>AutoNest</name>
+    <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> s</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> °</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Allowed angles for all parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Auto-nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Checker tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Chord tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Engine</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Hide DXF</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>JSON list, e.g. [0, 180]; empty = per part</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Margin to edges / defects</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Material</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Max evaluations</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Mirroring for all parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Nest now (preview)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Nest on</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Processes</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Rotation step (free parts)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Search</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Search time</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Seed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Sheet height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Sheet width</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Sheets at most (0 = as needed)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Spacing between parts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Strip width</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>empty = all cores</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>empty = time budget only</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>false</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>hide</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>none</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>own</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>sheet</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>sparrow</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>strip</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>true</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>…</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Flags</name>
+    <message>
+        <source>Each decision is one undo step and is saved with the document.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Exclude</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Flags</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Include</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Next ▶</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Undecided (stage default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>◀ Previous</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ImportDXF</name>
+    <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Clean up (zero-length, duplicate, overlapping edges, T-junctions)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Clean-up tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>DXF file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Huge coordinate above</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Import DXF</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Import now (preview)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Leave Units empty to use the units the file states ($INSUNITS or an AAMA 'Units:' text).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Move huge coordinates to a local origin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Pattern files</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Units</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>aama</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>auto</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>cm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>foot</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>inch</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>m</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>off</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>…</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="146"/>
+        <source>(post-process the job first)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="27"/>
+        <source>Accept fix (close the gap)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="18"/>
+        <source>Auto-nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="228"/>
+        <source>Cancelled.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="159"/>
+        <source>Cancelled. Change the options and press OK, or Cancel.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="111"/>
+        <source>Cannot set {0}: {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="391"/>
+        <source>Container</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="71"/>
+        <source>Contours cut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="83"/>
+        <source>Copied to {0}; edit it with any text editor.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="74"/>
+        <source>Copy profile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="18"/>
+        <source>Cut length</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="454"/>
+        <source>Cut path</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="102"/>
+        <source>DXF drawings (*.dxf *.DXF)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="62"/>
+        <source>DXF drawings (*.dxf *.DXF);;All files (*)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="397"/>
+        <source>Defects</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="170"/>
+        <source>Drawing</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="177"/>
+        <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="20"/>
+        <source>Estimated time</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="26"/>
+        <source>Exclude (not a part)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="270"/>
+        <source>Excluded</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="212"/>
+        <source>Flags</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="267"/>
+        <source>Holes</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="17"/>
+        <source>Idle travel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="23"/>
+        <source>Idle travel lower bound</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="21"/>
+        <source>Idle travel, drawing order</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="22"/>
+        <source>Idle travel, nearest neighbour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="20"/>
+        <source>Import DXF</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="25"/>
+        <source>Include (it is a part)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="19"/>
+        <source>Knife lifts</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="178"/>
+        <source>Layer</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="387"/>
+        <source>Layout</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="268"/>
+        <source>Lead-ins</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/base.py" line="53"/>
+        <source>LeatherCut: cancelled</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="81"/>
+        <source>LeatherCut: the cut path is out of date; plan the path again first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/run_job.py" line="63"/>
+        <source>Machine file written: {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="27"/>
+        <source>Manual nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="181"/>
+        <source>Marks</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="72"/>
+        <source>Method</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="80"/>
+        <source>Moving: {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="75"/>
+        <source>Name of the copy:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="91"/>
+        <source>No collisions.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="269"/>
+        <source>Open chains</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="266"/>
+        <source>Outer contours</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="48"/>
+        <source>Plan path</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="79"/>
+        <source>Planned {0} contours.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="25"/>
+        <source>Planning time</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="25"/>
+        <source>Post-process</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="173"/>
+        <source>Post-process the job as G-code first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="17"/>
+        <source>Recognise</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="208"/>
+        <source>Recognition</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="28"/>
+        <source>Reject fix (leave open)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/run_job.py" line="55"/>
+        <source>Run job</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="24"/>
+        <source>Saving vs drawing order</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="260"/>
+        <source>Send to cutter streams G-code: post-process as gcode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="233"/>
+        <source>Stop the job before closing.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="220"/>
+        <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="63"/>
+        <source>Wrote {0} ({1} lines).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="113"/>
+        <source>cutting {0} of {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="274"/>
+        <source>finish or cancel the open task panel first</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="114"/>
+        <source>idle move (knife up)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="419"/>
+        <source>over-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <source>shipped</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="152"/>
+        <source>start of the job</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="43"/>
+        <source>strip length {0:.1f} mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="115"/>
+        <source>t = {0:.1f} s of {1:.1f} s – {2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="420"/>
+        <source>under-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <source>user</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="41"/>
+        <source>utilisation {0:.1f} %</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="44"/>
+        <source>{0} containers</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="31"/>
+        <source>{0} edges on {1} layers, {2} marks, units {3} ({4})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="32"/>
+        <source>{0} parts ({1} excluded), {2} holes, {3} lead-ins, {4} open chains; flags: {5} over-recognised, {6} under-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="38"/>
+        <source>{0} placed, {1} unplaced</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="92"/>
+        <source>{0} problems: colliding parts are red.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="67"/>
+        <source>{0} uses {1}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="215"/>
+        <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCutPreferences</name>
+    <message>
+        <source>Defaults for new jobs. A job keeps its own values in its properties (Job &gt; Property view).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Gap tolerance for under-recognition flags (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Import clean-up tolerance (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Join tolerance (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>LeatherCut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Machine profile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Margin to material edges and defects (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Nesting search time (s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Path planning method (ga, aco or nn)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Path planning time budget (s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Spacing between parts (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>ga</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>grblhal_tangential</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_AutoNest</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="51"/>
+        <source>Auto-nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="52"/>
+        <source>Nest the recognised parts on sheets, a strip or a leather hide with defects</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_FlagOver</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flag_over.py" line="14"/>
+        <source>Flag over-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flag_over.py" line="15"/>
+        <source>Step through closed regions that are probably not parts (scrap between common-edge parts, group outlines) and include or exclude each</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_FlagUnder</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flag_under.py" line="14"/>
+        <source>Flag under-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flag_under.py" line="15"/>
+        <source>Step through outlines left open by a small gap and accept or reject the proposed bridging segment for each</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_ImportDXF</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="49"/>
+        <source>Import DXF…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="50"/>
+        <source>Import a DXF drawing into a new LeatherCut job (edges grouped by layer)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_MachineProfiles</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="106"/>
+        <source>Browse machine profiles (table, speeds, knife, I/O), choose the job's machine or copy a profile to edit it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="105"/>
+        <source>Machine profiles…</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_ManualNest</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="113"/>
+        <source>Manual nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="114"/>
+        <source>Move and rotate placed parts by hand; colliding parts turn red</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_PlanPath</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="86"/>
+        <source>Order the cuts and choose entry points (holes first, lead-ins respected); shows cutting moves, idle moves dashed, order numbers and entry points</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="85"/>
+        <source>Plan path</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_PostProcess</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="69"/>
+        <source>Post-process…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="70"/>
+        <source>Write the planned job as a machine file (G-code, HPGL or DXF) for a machine profile; moves outside the table or unsafe feeds are refused</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_Recognise</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="42"/>
+        <source>Recognise</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="43"/>
+        <source>Recognise closed part contours, holes, lead-ins and open chains and flag doubtful contours</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_RunJob</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/run_job.py" line="42"/>
+        <source>Run job</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/run_job.py" line="43"/>
+        <source>Run the whole job from the DXF to the machine file with the job's options (asks for a DXF when there is no job)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_SendToCutter</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="246"/>
+        <source>Send to cutter…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="247"/>
+        <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>LeatherCut_Simulate</name>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="158"/>
+        <source>Animate the knife along the planned cut path at the machine's speeds</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="157"/>
+        <source>Simulate</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>MachineProfiles</name>
+    <message>
+        <source>Copy to user folder…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Machine profiles</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Open user folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Use for this job</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ManualNest</name>
+    <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> °</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Angle step</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Manual nest</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Moving: –</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Select parts in the 3D view or tree. Move them here, edit their Placement, or use Transform. Colliding parts turn red.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Step</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>←</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>↑</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>→</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>↓</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>⟲ CCW</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>⟳ CW</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>PlanPath</name>
+    <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> mm/min</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> mm/s²</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source> s</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Acceleration</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Cut open chains too</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Cut speed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Entry candidate spacing</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Knife lift angle</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Machine</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Machine zero [x, y]</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Max candidates per contour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Method</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Plan now (preview, shows metrics)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Plan path</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Rapid speed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Seed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Take speeds and lift angle from the machine profile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Time budget</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Time per lift</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>[0, 0]</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>aco</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>degrees; empty = no tangential knife</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>ga</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>nn</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>PostProcess</name>
+    <message>
+        <source>Format</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Machine profile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Moves outside the table, feeds outside the profile or words unknown to the dialect are refused; nothing is written then.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Output file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Post-process</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Write now</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>dxf</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>gcode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>hpgl</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>…</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Recognise</name>
+    <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Chord tolerance (curves)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Close gaps within the gap tolerance automatically</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Fuzzy value (common edges)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Gap tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Join tolerance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Parts are blue, holes red, lead-ins orange, open chains grey, flagged contours magenta. Review flags with Flag over-/under-recognised.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Recognise</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Recognise now (preview)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>SendToCutter</name>
+    <message>
+        <source>/dev/ttyUSB0, socket://host:23, loop://</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Cycle start</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Every acknowledged line is journalled next to the G-code file. After a fault choose the segment to resume from; nothing is resent automatically.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Port</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Run the whole job in check mode ($C) first</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Send to cutter</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Start at</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Streaming</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>char-count</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>send-response</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>■ Stop safely</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>▶ Start</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>❚❚ Feed hold</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>Simulate</name>
+    <message>
+        <source> ×</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Simulate</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Speed-up</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>■ Stop</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>▶ Play</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>❚❚ Pause</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+</TS>

@@ -1,0 +1,70 @@
+"""File > Import of a real drawing with the LeatherCut importer, inside the GUI,
+then Recognise (panel) and Run job (toolbar command).  Writes
+``$LC_OUT/result.json`` and exits 0 only when every check passed."""
+
+import json
+import os
+import sys
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore
+
+OUT = os.environ["LC_OUT"]
+SAMPLE = os.environ["LC_SAMPLE"]
+results = []
+
+
+def check(name, cond, detail=""):
+    results.append({"check": name, "ok": bool(cond), "detail": str(detail)})
+    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)}", flush=True)
+
+
+def steps():
+    from LeatherCutWorkbench.commands import panel
+    from LeatherCutWorkbench.document import objects
+
+    Gui.activateWorkbench("LeatherCutWB")
+    doc = FreeCAD.newDocument("Imported")
+    # what File > Import does with the "LeatherCut DXF drawing" filter selected
+    import importlib
+    modules = FreeCAD.getImportType("dxf")
+    module = "LeatherCutWorkbench.document.importer"
+    check("File > Import offers LeatherCut for .dxf", module in modules, modules)
+    importlib.import_module(module).insert(SAMPLE, doc.Name)
+    jobs = objects.jobs(doc)
+    check("importer made a job", len(jobs) == 1, [o.Name for o in doc.Objects][:10])
+    job = jobs[0]
+    drawing = objects.stage_object(job, "Drawing")
+    check("layers imported", drawing is not None and len(drawing.Group) >= 1
+          and len(drawing.Group[0].Shape.Edges) > 100,
+          [o.Label for o in drawing.Group] if drawing else None)
+    Gui.Selection.addSelection(job)
+    Gui.runCommand("LeatherCut_Recognise")
+    check("recognised", panel.CURRENT.accept())
+    rec = objects.load_data(objects.stage_object(job, "Recognition"))
+    check("pattern pieces recognised", rec is not None and len(rec.active_parts()) >= 50,
+          len(rec.active_parts()) if rec else None)
+    job.PlanMethod, job.PlanTimeLimit = "nn", 1.0
+    job.PostOutputFile = os.path.join(OUT, "pattern.nc")
+    Gui.runCommand("LeatherCut_RunJob")
+    check("run job wrote G-code", os.path.isfile(job.PostOutputFile)
+          and open(job.PostOutputFile).read().count("G1") > 50)
+
+
+def main():
+    code = 1
+    try:
+        os.makedirs(OUT, exist_ok=True)
+        steps()
+        code = 0 if results and all(r["ok"] for r in results) else 1
+    except Exception:
+        traceback.print_exc()
+    with open(os.path.join(OUT, "result.json"), "w") as fh:
+        json.dump(results, fh, indent=1)
+    sys.stdout.flush()
+    os._exit(code)
+
+
+QtCore.QTimer.singleShot(500, main)

@@ -1,0 +1,289 @@
+"""GUI workflow run inside the real FreeCAD GUI (started by tests/test_gui_workbench.py).
+
+Runs as a macro once the GUI is up: activates the LeatherCut workbench and
+drives every command through its task panel on a sample job -- Import DXF,
+Recognise, both flag reviews, Auto-nest, Manual nest (with a collision),
+Plan path, Simulate, Machine profiles, Post-process, Send to cutter (into the
+project's fake GRBL controller on a pseudo-terminal) and Run job -- then
+undoes, saves, closes and reopens the document.  Each check prints
+``CHECK <name> ok`` or ``CHECK <name> FAILED: ...``; the results also go to
+``$LC_OUT/result.json``.  Ends with ``os._exit(0)`` only when every check passed.
+
+Environment: ``LC_SAMPLE`` (DXF), ``LC_OUT`` (output folder).
+"""
+
+import json
+import os
+import sys
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui as Gui
+from PySide import QtCore, QtGui
+
+OUT = os.environ["LC_OUT"]
+SAMPLE = os.environ["LC_SAMPLE"]
+results = []
+
+
+def check(name, cond, detail=""):
+    results.append({"check": name, "ok": bool(cond), "detail": str(detail)})
+    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)}", flush=True)
+    return cond
+
+
+def pump(seconds=0.2):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
+def steps():
+    from LeatherCutWorkbench.commands import base, import_dxf, panel
+    from LeatherCutWorkbench.document import objects, pipeline
+
+    Gui.activateWorkbench("LeatherCutWB")
+    pump()
+    check("workbench active", Gui.activeWorkbench().name() == "LeatherCutWB", Gui.activeWorkbench().name())
+    from LeatherCutWorkbench import commands
+    names = commands.command_names()
+    registered = set(Gui.listCommands())
+    check("all commands registered", all(n in registered for n in names),
+          [n for n in names if n not in registered])
+    mw = Gui.getMainWindow()
+    bars = [t for t in mw.findChildren(QtGui.QToolBar) if t.windowTitle() == "LeatherCut"]
+    check("toolbar present", bars and len([a for a in bars[0].actions() if not a.isSeparator()]) == len(names),
+          [a.text() for a in bars[0].actions()] if bars else "no toolbar")
+
+    # Import DXF (the command's panel, after the file dialog)
+    p = import_dxf.open_import_panel(SAMPLE)
+    check("import preview", p.preview(), p.status.text())
+    check("import panel accepted", p.accept())
+    doc = FreeCAD.ActiveDocument
+    job = objects.jobs(doc)[-1]
+    check("drawing imported", objects.stage_object(job, "Drawing") is not None)
+    base.focus_job(job)
+
+    def command_panel(name):
+        check(f"{name} active", Gui.Command.get(name).isActive())
+        panel.CURRENT = None
+        Gui.runCommand(name)
+        pump(0.1)
+        check(f"{name} opened a panel", panel.CURRENT is not None and Gui.Control.activeDialog())
+        return panel.CURRENT
+
+    p = command_panel("LeatherCut_Recognise")
+    check("recognise preview", p.preview(), p.status.text())
+    check("recognise accepted", p.accept())
+    rec = objects.stage_object(job, "Recognition")
+    check("recognition objects", rec is not None and len(rec.Group) >= 6)
+    outer = [o for o in rec.Group if getattr(o, "Kind", "") == "outer"][0]
+    check("parts coloured blue", tuple(round(c, 2) for c in outer.ViewObject.LineColor[:3]) ==
+          (0.12, 0.37, 0.75), outer.ViewObject.LineColor)
+
+    # flags: each decision one undo step
+    p = command_panel("LeatherCut_FlagOver")
+    n_undo = len(doc.UndoNames)
+    p.decide("Include")
+    flag = p.flags[0]
+    check("over flag included", flag.Decision == "Include")
+    check("decision is one undo step", len(doc.UndoNames) == n_undo + 1, doc.UndoNames[:3])
+    doc.undo()
+    check("undo decision", flag.Decision == "Undecided", flag.Decision)
+    doc.redo()
+    check("redo decision", flag.Decision == "Include", flag.Decision)
+    p.step(1)
+    p.reject()
+    p = command_panel("LeatherCut_FlagUnder")
+    p.decide("Accept")
+    check("under flag accepted", p.flags[0].Decision == "Accept")
+    p.reject()
+
+    # Auto-nest with the panel's progress
+    p = command_panel("LeatherCut_AutoNest")
+    for prop, value in (("NestContainer", "sheet"), ("NestSheetWidth", 400.0), ("NestSheetHeight", 300.0),
+                        ("NestMargin", 2.0), ("NestSpacing", 2.0), ("NestTimeBudget", 1.0),
+                        ("NestWorkers", "1")):
+        p.set_widget(prop, value)
+    check("nest options bound", job.NestContainer == "sheet" and job.NestSheetWidth == 400.0, job.NestContainer)
+    # a long search, cancelled from the panel while it runs: the GUI keeps serving events
+    p.set_widget("NestTimeBudget", 60.0)
+    QtCore.QTimer.singleShot(1500, p.reject)
+    t0 = time.monotonic()
+    ran = p.preview()
+    elapsed = time.monotonic() - t0
+    check("nest cancelled from the panel", not ran and elapsed < 20 and Gui.Control.activeDialog(),
+          f"{ran} after {elapsed:.1f} s: {p.status.text()}")
+    p.set_widget("NestTimeBudget", 1.0)
+    check("nest preview", p.preview(), p.status.text())
+    check("progress bar reached", p.progress_bar.value() >= 90, p.progress_bar.value())
+    check("nest accepted", p.accept())
+    placed = pipeline.placed_objects(job)
+    check("parts placed", len(placed) == 7, len(placed))
+
+    # Manual nest: push one part onto another -> red; cancel restores
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(placed[0])
+    p = command_panel("LeatherCut_ManualNest")
+    before = placed[0].Placement.Base
+    shift = placed[1].Shape.BoundBox.Center - placed[0].Shape.BoundBox.Center
+    p.move(shift.x, shift.y)
+    problems = p.check()
+    check("collision reported", problems and placed[0].Collides, problems)
+    check("collision shown red", tuple(round(c, 2) for c in placed[0].ViewObject.ShapeColor[:3]) == (0.9, 0.22, 0.21),
+          placed[0].ViewObject.ShapeColor)
+    p.rotate(90)
+    p.reject()
+    pump()
+    check("manual nest cancelled", placed[0].Placement.Base == before and not placed[0].Collides,
+          placed[0].Placement.Base)
+    p = command_panel("LeatherCut_ManualNest")
+    p.move(0.5, 0.0)
+    check("small move keeps layout valid", not p.check(), p.check())
+    check("manual nest accepted", p.accept())
+
+    p = command_panel("LeatherCut_PlanPath")
+    p.set_widget("PlanMethod", "ga")
+    p.set_widget("PlanTimeLimit", 1.0)
+    check("plan preview", p.preview(), p.status.text())
+    table = p.form.findChild(QtGui.QTableWidget, "metricsTable")
+    labels = [table.item(r, 0).text() for r in range(table.rowCount())]
+    check("metrics in panel", "Idle travel" in labels and "Knife lifts" in labels, labels)
+    check("plan accepted", p.accept())
+    cut = objects.stage_object(job, "CutPath")
+    check("cut path drawn", cut is not None and len(cut.Shape.Edges) > 20 and cut.IdleTravel > 0)
+    vp = cut.ViewObject.Proxy
+    check("order numbers and idle moves drawn", vp.overlay.getNumChildren() == 3, vp.overlay.getNumChildren())
+
+    p = command_panel("LeatherCut_Simulate")
+    p.speed.setValue(50.0)
+    p.seek(p.timeline.duration / 2)
+    p.play()
+    pump(0.3)
+    check("simulation runs", p.t > p.timeline.duration / 2, p.label.text())
+    p.reject()
+
+    p = command_panel("LeatherCut_MachineProfiles")
+    check("profiles listed", p.list.count() >= 5, p.list.count())
+    p.reject()
+
+    p = command_panel("LeatherCut_PostProcess")
+    out_nc = os.path.join(OUT, "job.nc")
+    p.set_widget("PostOutputFile", out_nc)
+    check("post accepted", p.accept())
+    check("machine file written", os.path.isfile(out_nc) and open(out_nc).read().count("G1") > 20)
+
+    # Send to cutter: stream into the fake controller (off the GUI thread)
+    from LeatherCutWorkbench.post.emulator import FakeController
+    from LeatherCutWorkbench.post.profiles import load_profile
+    prof = load_profile(job.PostMachine)
+    ctrl = FakeController(flavour="grblhal", axes=prof.axes, wrapped=prof.rotary_axis if prof.rotary_wrap else "")
+    ctrl.start()
+    try:
+        p = command_panel("LeatherCut_SendToCutter")
+        p.port.setText(ctrl.port)
+        p.check.setChecked(True)
+        session = p.start()
+        t0 = time.monotonic()
+        while session.running and time.monotonic() - t0 < 60:
+            pump(0.1)
+        pump(0.3)
+        check("streamed to the controller", session.result is not None and session.result.ok,
+              session.error or (session.result.to_json() if session.result else "no result"))
+        check("controller executed the job", len(ctrl.executed) > 20, len(ctrl.executed))
+        check("journal written", os.path.isfile(out_nc + ".journal"))
+        p.reject()
+    finally:
+        ctrl.close()
+
+    # a slow controller: feed hold, cycle start, stop safely, then resume from the journal
+    os.remove(out_nc + ".journal")
+    ctrl = FakeController(flavour="grblhal", axes=prof.axes, line_time=0.03,
+                          wrapped=prof.rotary_axis if prof.rotary_wrap else "")
+    ctrl.start()
+    try:
+        p = command_panel("LeatherCut_SendToCutter")
+        p.port.setText(ctrl.port)
+        p.check.setChecked(False)
+        session = p.start()
+
+        def wait_for(cond, limit=30.0):
+            t0 = time.monotonic()
+            while not cond() and time.monotonic() - t0 < limit:
+                pump(0.05)
+            return cond()
+
+        check("streaming started", wait_for(lambda: session.progress.get("acked", 0) > 10), session.progress)
+        p.pause()
+        check("feed hold", wait_for(lambda: ctrl.state.startswith("Hold"), 5), ctrl.state)
+        p.resume_motion()
+        check("cycle start", wait_for(lambda: not ctrl.state.startswith("Hold"), 8), ctrl.state)
+        p.stop()
+        check("stopped safely", wait_for(lambda: not session.running, 20) and session.result is not None
+              and session.result.status == "aborted" and session.result.stopped_safely,
+              session.result.to_json() if session.result else session.error)
+        pump(0.3)
+        resume_at = p.resume.currentData()
+        check("resume point suggested", bool(resume_at), [p.resume.itemText(i) for i in range(p.resume.count())])
+        session2 = p.start()
+        check("resumed job finished", wait_for(lambda: not session2.running, 60) and session2.result is not None
+              and session2.result.ok, session2.error or (session2.result.to_json() if session2.result else ""))
+        p.reject()
+    finally:
+        ctrl.close()
+
+    # Run job: the whole pipeline in one undo step
+    n_undo = len(doc.UndoNames)
+    os.remove(out_nc)
+    # the path planned after the hand move differs from the one Run job makes from a fresh nest
+    planned_by_hand = objects.stage_object(job, "CutPath").Data
+    Gui.runCommand("LeatherCut_RunJob")
+    pump()
+    check("run job wrote the machine file", os.path.isfile(out_nc) and os.path.getsize(out_nc) > 500)
+    check("run job is one undo step", len(doc.UndoNames) == n_undo + 1, doc.UndoNames[:3])
+    check("run job made a new cut path", objects.stage_object(job, "CutPath").Data != planned_by_hand)
+    doc.undo()
+    check("undo run job restores the earlier path", objects.stage_object(job, "CutPath").Data == planned_by_hand)
+    doc.redo()
+    check("redo run job", objects.stage_object(job, "CutPath").Data != planned_by_hand)
+
+    path = os.path.join(OUT, "job.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    pump()
+    doc = FreeCAD.openDocument(path)
+    pump()
+    job = objects.jobs(doc)[-1]
+    states = objects.stage_states(job)
+    check("reopened with every stage", states == {"Drawing": "current", "Recognition": "current",
+                                                  "Layout": "current", "CutPath": "current"}, states)
+    cut = objects.stage_object(job, "CutPath")
+    check("cut path view restored", type(cut.ViewObject.Proxy).__name__ == "CutPathViewProvider"
+          and cut.ViewObject.Proxy.overlay.getNumChildren() == 3)
+    check("flag decisions restored", sorted(f.Decision for f in pipeline.flag_objects(job)) == ["Accept", "Include"])
+    check("options restored", job.NestContainer == "sheet" and job.NestSheetWidth == 400.0)
+    Gui.runCommand("LeatherCut_PostProcess")
+    pump()
+    p = panel.CURRENT
+    check("post after reopen", p.accept())
+
+
+def main():
+    code = 1
+    try:
+        os.makedirs(OUT, exist_ok=True)
+        steps()
+        code = 0 if results and all(r["ok"] for r in results) else 1
+    except Exception:
+        traceback.print_exc()
+        results.append({"check": "no exception", "ok": False, "detail": traceback.format_exc()})
+    with open(os.path.join(OUT, "result.json"), "w") as fh:
+        json.dump(results, fh, indent=1)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
+QtCore.QTimer.singleShot(500, main)

@@ -1,0 +1,288 @@
+"""The LeatherCut job in a FreeCAD document, headless (FreeCAD as a library).
+
+A generated drawing (tests/gui/sample.py) with a pinwheel (over-recognised
+gap), an outline open by 0.3 mm (under-recognised), a plate with a hole and a
+lead-in and a stray line goes through every stage; the job is saved,
+reopened and undone.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+FreeCAD = pytest.importorskip("FreeCAD") if os.environ.get("CI") != "true" else __import__("FreeCAD")
+
+from LeatherCutWorkbench.core import model  # noqa: E402
+from LeatherCutWorkbench.core.geometry import ArcSeg, CurveSeg, LineSeg  # noqa: E402
+from LeatherCutWorkbench.document import codec, objects, options, pipeline  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gui.sample import write_sample  # noqa: E402
+
+
+@pytest.fixture
+def sample(tmp_path):
+    return write_sample(str(tmp_path / "sample.dxf"))
+
+
+@pytest.fixture
+def doc():
+    d = FreeCAD.newDocument("LCTest")
+    d.UndoMode = 1
+    name = d.Name
+    yield d
+    if name in FreeCAD.listDocuments():
+        FreeCAD.closeDocument(name)
+
+
+def _recognised(doc, sample):
+    job = pipeline.make_job(doc, "Job", sample)
+    pipeline.run_stage(job, "Import")
+    pipeline.run_stage(job, "Recognise")
+    return job
+
+
+def _flag(job, kind):
+    return [f for f in pipeline.flag_objects(job) if f.Kind == kind][0]
+
+
+def test_import_groups_edges_by_layer(doc, sample):
+    job = pipeline.make_job(doc, "Job", sample)
+    drawing_obj = pipeline.run_stage(job, "Import")
+    labels = sorted(o.Label for o in drawing_obj.Group)
+    assert labels == ["Layer LEADIN", "Layer PARTS", "Layer STRAY"]
+    drawing = objects.load_data(drawing_obj)
+    assert isinstance(drawing, model.Drawing) and drawing.units == "mm"
+    # every imported edge is shown on its layer's object, none lost or doubled
+    for o in drawing_obj.Group:
+        layer = o.Label.split(" ", 1)[1]
+        assert len(o.Shape.Edges) == sum(1 for e in drawing.edges if e.src.layer == layer)
+    parts_layer = [o for o in drawing_obj.Group if o.Label == "Layer PARTS"][0]
+    # 5 rectangles of 4 sides, the plate (4 sides, one split by the lead-in) and the hole
+    assert len(parts_layer.Shape.Edges) >= 5 * 4 + 4 + 1
+    assert any(e.Curve.TypeId == "Part::GeomCircle" for e in parts_layer.Shape.Edges)
+
+
+def test_recognition_objects_by_kind_and_flags(doc, sample):
+    job = _recognised(doc, sample)
+    rec_obj = objects.stage_object(job, "Recognition")
+    kinds = {o.Kind: o for o in rec_obj.Group if objects.role(o) == "Geometry"}
+    assert len(kinds["outer"].Shape.Wires) == 5          # pinwheel x4 + plate
+    assert len(kinds["hole"].Shape.Wires) == 1
+    assert len(kinds["lead_in"].Shape.Edges) == 1
+    assert len(kinds["open"].Shape.Edges) >= 2           # open outline + stray line
+    assert len(kinds["excluded"].Shape.Edges) == 4       # the scrap square, excluded by default
+    flags = {f.Kind: f for f in pipeline.flag_objects(job)}
+    assert flags["over"].Decision == "Undecided"
+    rec = objects.load_data(rec_obj)
+    scrap = [p for p in rec.parts if p.outer.id in flags["over"].Ids or p.id in flags["over"].Ids]
+    assert len(scrap) == 1 and scrap[0].excluded
+    assert abs(scrap[0].outer.area) == pytest.approx(20 * 20, rel=1e-6)
+    assert flags["under"].Gap == pytest.approx(0.3, abs=1e-6)
+    # the under flag shows the chain plus its bridge
+    assert len(flags["under"].Shape.Edges) == 5
+
+
+def test_decisions_change_the_parts_to_cut(doc, sample):
+    job = _recognised(doc, sample)
+    before = pipeline.effective_recognition(job)
+    assert len(before.active_parts()) == 5
+    pipeline.set_flag_decision(_flag(job, "under"), "Accept")
+    pipeline.set_flag_decision(_flag(job, "over"), "Include")
+    after = pipeline.effective_recognition(job)
+    active = after.active_parts()
+    assert len(active) == 7
+    closed = [p for p in active if p.id.endswith("-closed")][0]
+    assert closed.outer.area == pytest.approx(40 * 30, rel=1e-6)   # CCW, closed by the bridge
+    assert "O1" not in [c.id for c in after.open_chains]
+    scrap_ids = set(_flag(job, "over").Ids)
+    assert [p for p in active if p.outer.id in scrap_ids or p.id in scrap_ids][0].excluded is False
+
+
+def test_stage_options_are_properties(doc, sample):
+    job = pipeline.make_job(doc, "Job", sample)
+    assert job.RecogniseJoinTol == pytest.approx(0.01)
+    job.RecogniseGapTol = 0.2
+    job.NestRotationsOverride = "[0, 180]"
+    opts = pipeline.stage_options(job, "Recognise")
+    assert opts.gap_tol == pytest.approx(0.2)
+    nest = pipeline.stage_options(job, "Nest")
+    assert nest.rotations_override == [0, 180]
+    assert nest.container is None                        # NestContainer "none"
+    job.NestContainer = "sheet"
+    job.NestSheetWidth, job.NestSheetHeight = 300.0, 200.0
+    spec = pipeline.stage_options(job, "Nest").container
+    assert (spec.kind, spec.width, spec.height) == ("sheet", 300.0, 200.0)
+    job.NestRotationsOverride = "[0, 18"
+    with pytest.raises(Exception, match="NestRotationsOverride"):
+        pipeline.stage_options(job, "Nest")
+
+
+def test_earlier_change_marks_later_stages_out_of_date(doc, sample):
+    job = _recognised(doc, sample)
+    job.PlanMethod, job.PlanTimeLimit = "nn", 0.5
+    pipeline.run_stage(job, "Plan")
+    assert objects.stage_states(job) == {"Drawing": "current", "Recognition": "current",
+                                         "Layout": "missing", "CutPath": "current"}
+    pipeline.set_flag_decision(_flag(job, "over"), "Include")
+    assert objects.stage_states(job)["CutPath"] == "out of date"
+    assert objects.stage_states(job)["Recognition"] == "current"
+    pipeline.run_stage(job, "Plan")
+    job.RecogniseJoinTol = 0.02
+    assert objects.stage_states(job)["Recognition"] == "out of date"
+    assert objects.stage_states(job)["CutPath"] == "out of date"
+    assert objects.stage_states(job)["Drawing"] == "current"
+    pipeline.run_stage(job, "Recognise")
+    assert objects.stage_states(job)["Recognition"] == "current"
+    # a decision survives re-recognition
+    assert _flag(job, "over").Decision == "Include"
+
+
+def _full_job(doc, sample, out_dir):
+    job = _recognised(doc, sample)
+    pipeline.set_flag_decision(_flag(job, "under"), "Accept")
+    job.NestContainer = "sheet"
+    job.NestSheetWidth, job.NestSheetHeight = 400.0, 300.0
+    job.NestMargin, job.NestSpacing = 2.0, 2.0
+    job.NestTimeBudget, job.NestWorkers = 0.5, "1"
+    pipeline.run_stage(job, "Nest")
+    job.PlanMethod, job.PlanTimeLimit = "nn", 0.5
+    pipeline.run_stage(job, "Plan")
+    job.PostOutputFile = os.path.join(out_dir, "job.nc")
+    pipeline.run_stage(job, "Post")
+    return job
+
+
+def test_whole_job_save_and_reopen(doc, sample, tmp_path):
+    job = _full_job(doc, sample, str(tmp_path))
+    placed = pipeline.placed_objects(job)
+    assert len(placed) == 6 and not any(o.Collides for o in placed)
+    text = open(job.PostLastOutput).read()
+    assert "G21" in text and text.count("G1") > 20
+    cut = objects.stage_object(job, "CutPath")
+    items, idle = cut.Items, cut.IdleTravel
+    assert items == 6 + 1 + 0        # 6 outers + 1 hole; no open chains after nesting
+    assert idle > 0
+    path = str(tmp_path / "job.FCStd")
+    doc.saveAs(path)
+    name = doc.Name
+    FreeCAD.closeDocument(name)
+    d2 = FreeCAD.openDocument(path)
+    try:
+        job2 = objects.jobs(d2)[0]
+        assert type(job2.Proxy).__name__ == "JobProxy"
+        assert job2.NestContainer == "sheet" and job2.NestMargin == 2.0
+        assert job2.PlanMethod == "nn" and job2.SourceFile == sample
+        assert objects.stage_states(job2) == {"Drawing": "current", "Recognition": "current",
+                                              "Layout": "current", "CutPath": "current"}
+        assert _flag(job2, "under").Decision == "Accept"
+        plan = pipeline.stored_plan(job2)
+        assert len(plan.items) == items
+        assert objects.stage_object(job2, "CutPath").IdleTravel == pytest.approx(idle)
+        assert len(pipeline.placed_objects(job2)) == 6
+        # reopened objects keep working: re-plan and re-post
+        pipeline.run_stage(job2, "Plan")
+        assert pipeline.run_stage(job2, "Post") == job2.PostOutputFile
+    finally:
+        FreeCAD.closeDocument(d2.Name)
+
+
+def test_manual_move_collision_and_layout(doc, sample, tmp_path):
+    job = _full_job(doc, sample, str(tmp_path))
+    a, b = pipeline.placed_objects(job)[:2]
+    assert not pipeline.update_collisions(job)
+    shift = b.Shape.BoundBox.Center - a.Shape.BoundBox.Center
+    shift.z = 0
+    a.Placement = FreeCAD.Placement(a.Placement.Base + shift, a.Placement.Rotation)
+    problems = pipeline.update_collisions(job)
+    assert problems and a.Collides and b.Collides
+    assert objects.stage_states(job)["CutPath"] == "out of date"
+    layout = pipeline.current_layout(job)
+    pa = [p for p in layout.placements if (p.part_id, p.copy) == (a.PartId, a.Copy)][0]
+    assert (pa.x, pa.y) == pytest.approx((a.Placement.Base.x, a.Placement.Base.y))
+    a.Placement = FreeCAD.Placement(FreeCAD.Vector(1000, 1000, 0), FreeCAD.Rotation())
+    problems = pipeline.update_collisions(job)
+    assert a.Collides and not b.Collides      # now it is off the sheet
+    assert any("outside" in p for p in problems)
+
+
+def test_undo_redo_of_a_decision_and_a_stage(doc, sample):
+    job = _recognised(doc, sample)
+    flag = _flag(job, "over")
+    doc.openTransaction("decide")
+    pipeline.set_flag_decision(flag, "Include")
+    doc.commitTransaction()
+    doc.openTransaction("plan")
+    job.PlanMethod, job.PlanTimeLimit = "nn", 0.5
+    pipeline.run_stage(job, "Plan")
+    doc.commitTransaction()
+    assert objects.stage_object(job, "CutPath") is not None
+    doc.undo()
+    assert objects.stage_object(job, "CutPath") is None
+    assert job.PlanMethod == "ga"
+    doc.undo()
+    assert flag.Decision == "Undecided"
+    doc.redo()
+    assert flag.Decision == "Include"
+
+
+def test_both_pickling_protocols():
+    for cls in (objects.JobProxy, objects.DrawingProxy, objects.FlagProxy, objects.CutPathProxy):
+        p = cls.__new__(cls)
+        p.__setstate__({"Role": cls.ROLE})
+        assert p.__getstate__() == {"Role": cls.ROLE} == p.dumps()
+        q = cls.__new__(cls)
+        q.loads(p.dumps())
+        assert q.Role == cls.ROLE
+
+
+def test_codec_round_trip_keeps_types():
+    part = model.Part("P1", model.Contour("C1", [LineSeg((0, 0), (1, 0)),
+                                                 ArcSeg((1, 1), 1.0, -90.0, 180.0),
+                                                 CurveSeg(((1, 2), (0.5, 2.5), (0, 0)), "spline")]),
+                      rotations=[0.0, 180.0])
+    plan = model.CutPlan(items=[model.CutItem("C1", "P1", "outer", (0.0, 0.0), part.outer.segments)],
+                         metrics={"idle_mm": 1.5, "nested": {"a": [1, 2]}})
+    for value in (part, plan, model.Recognition(parts=[part])):
+        back = codec.loads(codec.dumps(value))
+        assert back == value
+    assert isinstance(codec.loads(codec.dumps(part)).outer.segments[2].pts, tuple)
+    with pytest.raises(ValueError):
+        codec._dec({"@": "os.system"})
+
+
+def test_importer_hook_open_and_insert(sample):
+    from LeatherCutWorkbench.document import importer
+    d = importer.open(sample)
+    try:
+        job = objects.jobs(d)[0]
+        assert objects.stage_states(job)["Drawing"] == "current"
+        importer.insert(sample, d.Name)
+        assert len(objects.jobs(d)) == 2
+    finally:
+        FreeCAD.closeDocument(d.Name)
+
+
+def test_freecadcmd_registers_importer_and_finds_venv_packages(tmp_path):
+    """Init.py inside the real freecadcmd: importer registered, ezdxf 1.x and
+    shapely 2.x from the venv, FreeCAD's numpy untouched."""
+    import shutil
+    if shutil.which("freecadcmd") is None:
+        if os.environ.get("CI") == "true":
+            pytest.fail("freecadcmd missing")
+        pytest.skip("freecadcmd missing")
+    from gui.freecad_gui import make_home
+    home = make_home()
+    code = ("import sys, FreeCAD, ezdxf, shapely, numpy; "
+            "ok = 'LeatherCutWorkbench.document.importer' in FreeCAD.getImportType('dxf') "
+            "and ezdxf.__version__.startswith('1.') and shapely.__version__.startswith('2.') "
+            "and numpy.__file__.startswith('/usr/lib/python3/dist-packages'); "
+            "print('LC', ezdxf.__version__, shapely.__version__, numpy.__file__); sys.exit(0 if ok else 1)")
+    env = dict(os.environ, HOME=home)
+    proc = subprocess.run(["freecadcmd", "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "LC 1." in proc.stdout

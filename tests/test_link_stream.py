@@ -1,0 +1,222 @@
+"""The live link against the fake controller: identify, stream modes, check
+mode, pause/resume/abort, lost link, journal; and reply parsing."""
+
+import os
+import threading
+import time
+
+import pytest
+
+from LeatherCutWorkbench.post import gcode
+from LeatherCutWorkbench.post.emulator import FakeController, Fault
+from LeatherCutWorkbench.post.link import (GrblLink, Journal, LinkError, job_from_lines,
+                                           job_from_program, load_journal)
+from LeatherCutWorkbench.post.link.protocol import parse_reply
+from LeatherCutWorkbench.post.profiles import load_profile
+
+from post_helpers import sample_plan
+
+FAST = dict(status_interval=0.05, link_timeout=0.3, greet_timeout=1.0, hold_timeout=1.0,
+            reset_timeout=1.0, command_timeout=2.0)
+
+
+def job_for(name="grblhal_tangential"):
+    prof = load_profile(name)
+    return prof, job_from_program("job.nc", gcode.build_program(sample_plan(), prof))
+
+
+def test_parse_replies():
+    assert parse_reply("ok").kind == "ok"
+    e = parse_reply("error:20")
+    assert (e.kind, e.code) == ("error", 20) and "unsupported" in e.text
+    a = parse_reply("ALARM:1")
+    assert (a.kind, a.code) == ("alarm", 1) and "hard limit" in a.text
+    s = parse_reply("<Hold:0|MPos:1.000,2.000,3.000|Bf:15,128|FS:0,0>")
+    assert s.kind == "status" and s.state == "Hold:0" and s.fields["MPos"] == "1.000,2.000,3.000"
+    assert parse_reply("Grbl 1.1h ['$' for help]").kind == "banner"
+    assert parse_reply("GrblHAL 1.1f ['$' or '$HELP' for help]").text == "GrblHAL 1.1f"
+    assert parse_reply("[MSG:Enabled]").text == "Enabled"
+    assert parse_reply("[OPT:V,15,128]").fields == {"OPT": "V,15,128"}
+
+
+@pytest.mark.parametrize("flavour,rx,axes", [("grbl", 128, "XYZ"), ("grblhal", 1024, "XYZC")])
+def test_greet_identifies_controller(flavour, rx, axes):
+    with FakeController(flavour=flavour, axes=axes) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            info = link.greet()
+    assert info.flavour == flavour and info.rx_size == rx and info.axes == axes
+    assert info.state == "Idle" and info.version.startswith("1.1")
+
+
+def test_no_controller_is_a_clear_error():
+    with GrblLink("loop://", **FAST) as link:       # loop:// only echoes
+        with pytest.raises(LinkError, match="no controller answers"):
+            link.greet()
+    with pytest.raises(LinkError, match="cannot open"):
+        GrblLink("/dev/does-not-exist", **FAST).open()
+
+
+def test_char_counting_fills_but_never_overflows_the_buffer(tmp_path):
+    prof, job = job_for()
+    with FakeController(flavour="grbl", axes="XYZC", line_time=0.002) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.greet()
+            seen = []
+            orig = emu._process_one
+
+            def spy():
+                seen.append(len(emu._rx))
+                orig()
+            emu._process_one = spy
+            res = link.stream(job, Journal.open(str(tmp_path / "j"), job, "char-count"),
+                              "char-count")
+    assert res.status == "done" and emu.overflows == 0
+    assert max(seen) > 64            # the host really kept the 128-byte buffer busy
+    assert max(seen) <= 127
+    assert emu.executed == job.blocks
+    st = load_journal(str(tmp_path / "j"))
+    last_sync = max(i for i, l in enumerate(job.source) if l == "G4 P0")
+    assert st.last_sync == last_sync and st.events[-1]["e"] == "done"
+
+
+def test_send_response_has_one_line_in_flight(tmp_path):
+    prof, job = job_for()
+    with FakeController(flavour="grblhal", axes="XYZC", line_time=0.001) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.greet()
+            seen = []
+            orig = emu._process_one
+
+            def spy():
+                seen.append(emu._rx.count(b"\n"))
+                orig()
+            emu._process_one = spy
+            res = link.stream(job, None, "send-response")
+    assert res.status == "done" and max(seen) == 1
+    assert emu.executed == job.blocks
+
+
+def test_check_mode_finds_a_bad_line_and_nothing_moves():
+    prof, job = job_for()
+    lines = list(job.source)
+    bad = next(i for i, l in enumerate(lines) if l.startswith("G2 "))
+    lines[bad] = lines[bad].replace("I", "Q", 1)            # Q is unused by G2: error:36
+    bad_job = job_from_lines("bad.nc", lines)
+    with FakeController(flavour="grblhal", axes="XYZC") as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.greet()
+            res = link.run_check(bad_job, "char-count")
+            assert res.status == "check-failed" and res.line == bad + 1
+            assert res.message.startswith("error:")
+            assert emu.executed == [] and emu.state == "Idle"
+            ok = link.run_check(job, "char-count")
+            assert ok.status == "check-ok" and emu.executed == []
+            assert emu.position["X"] == 0.0          # check mode moved nothing
+
+
+def test_pause_resume_and_abort(tmp_path):
+    prof, job = job_for()
+    with FakeController(flavour="grblhal", axes="XYZC", line_time=0.01) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(prof)
+            link.greet()
+            out = {}
+            th = threading.Thread(target=lambda: out.setdefault(
+                "r", link.stream(job, Journal.open(str(tmp_path / "j"), job, "char-count"),
+                                 "char-count")))
+            th.start()
+            time.sleep(0.15)
+            link.pause()
+            end = time.monotonic() + 3.0
+            while emu.state != "Hold:0" and time.monotonic() < end:
+                time.sleep(0.01)
+            assert emu.state == "Hold:0"
+            n_paused = len(emu.executed)
+            time.sleep(0.2)
+            assert len(emu.executed) == n_paused       # nothing runs during the hold
+            link.resume()
+            end = time.monotonic() + 3.0
+            while len(emu.executed) == n_paused and time.monotonic() < end:
+                time.sleep(0.01)
+            assert len(emu.executed) > n_paused
+            link.abort()
+            th.join(5)
+    res = out["r"]
+    assert res.status == "aborted" and res.stopped_safely
+    assert 0 < res.acked < len(job.blocks)
+    assert emu.position["Z"] == prof.z_up               # knife lifted after the stop
+    st = load_journal(str(tmp_path / "j"))
+    assert len(st.acked_set) == res.acked and st.events[-1]["e"] == "aborted"
+
+
+def test_lost_link_when_status_goes_unanswered(tmp_path):
+    prof, job = job_for()
+    emu = FakeController(flavour="grblhal", axes="XYZC",
+                         faults=[Fault("stall", 20, seconds=30)]).start()
+    try:
+        link = GrblLink(emu.port, **{**FAST, "reset_timeout": 0.2}).open()
+        link.greet()
+        t0 = time.monotonic()
+        res = link.stream(job, None)
+        assert res.status == "lost" and "no status reply" in res.message
+        assert time.monotonic() - t0 < 3.0
+        link.close()
+    finally:
+        emu._stall_until = 0
+        emu.close()
+
+
+def test_journal_refuses_another_job_and_survives_torn_write(tmp_path):
+    prof, job = job_for()
+    p = str(tmp_path / "j")
+    j = Journal.open(p, job, "send-response")
+    j.ack(job.index[0], job.segs[0])
+    j.close()
+    with open(p, "a") as fh:
+        fh.write('{"e":"ack","i":')          # crash mid-write
+    st = load_journal(p)
+    assert st.acked == [job.index[0]]
+    other = job_from_lines("other.nc", job.source + ["G0 X1"])
+    with pytest.raises(Exception, match="another job"):
+        Journal.open(p, other, "send-response")
+
+
+def test_foreign_gcode_file_is_checked_and_journaled_per_line(data_dir, tmp_path):
+    from LeatherCutWorkbench.core.errors import SafetyError
+    from LeatherCutWorkbench.post import safety
+    from LeatherCutWorkbench.post.link import job_from_file
+
+    path = os.path.join(data_dir, "post", "foreign_grbl.nc")
+    prof = load_profile("grbl11_knife_z_servo")
+    job = job_from_file(path)
+    safety.check_program(job.source, prof, path)
+    assert job.segment_ids[0] == "L3" and len(job.blocks) == 13
+    with FakeController(flavour="grbl", axes="XYZ") as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.greet()
+            link.check_axes(job)
+            res = link.stream(job, Journal.open(str(tmp_path / "j"), job, "char-count"),
+                              "char-count")
+    assert res.status == "done" and emu.position["X"] == 0.0
+    st = load_journal(str(tmp_path / "j"))
+    assert set(st.done_segments()) == set(job.segment_ids)
+    # the same program moved 300 mm over: the arc leaves the 1300 x 900 table
+    moved = [l.replace("X60", "X1310") if l.startswith("G3") else l for l in job.source]
+    with pytest.raises(SafetyError, match="line 9"):
+        safety.check_program(moved, prof, "moved.nc")
+
+
+def test_send_session_runs_off_the_calling_thread(tmp_path):
+    from LeatherCutWorkbench.post.link import SendSession
+
+    prof, job = job_for()
+    with FakeController(flavour="grblhal", axes="XYZC", homing=True) as emu:
+        done = threading.Event()
+        seen = []
+        s = SendSession(job, prof, emu.port, str(tmp_path / "j"), mode="char-count",
+                        check=True, progress=seen.append, **FAST)
+        th = s.start(lambda sess: done.set())
+        assert th is not threading.current_thread()
+        assert done.wait(10)
+    assert s.error is None and s.outcome.ok and s.outcome.check.ok
+    assert seen[-1]["percent"] == 100.0 and emu.executed == job.blocks

@@ -1,0 +1,108 @@
+"""The validity checker on hand-made layouts: it accepts valid ones and names
+what is wrong with invalid ones."""
+
+from LeatherCutWorkbench.core.model import Container, Layout, Placement
+from LeatherCutWorkbench.core.nesting.checker import check_layout
+from LeatherCutWorkbench.core.nesting.containers import rectangle
+
+from nest_shapes import disc, frame, l_shape, rect
+
+
+def sheet(defects=(), zones=(), base_grade=0):
+    return Container(id="s", kind="sheet", outline=rectangle(0, 0, 100, 50),
+                     defects=list(defects), zones=list(zones), base_grade=base_grade)
+
+
+def lay(*pls, container=None):
+    return Layout(containers=[container or sheet()], placements=list(pls))
+
+
+def test_accepts_touching_parts_inside_the_sheet():
+    parts = [rect("a", 40, 50, q=2)]
+    layout = lay(Placement("a", 0, "s", 0, 0), Placement("a", 1, "s", 40, 0))
+    assert check_layout(parts, layout) == []
+
+
+def test_rejects_overlap():
+    parts = [rect("a", 40, 50, q=2)]
+    layout = lay(Placement("a", 0, "s", 0, 0), Placement("a", 1, "s", 39, 0))
+    probs = check_layout(parts, layout)
+    assert len(probs) == 1 and "a#0 overlaps a#1" in probs[0]
+
+
+def test_overlap_within_tolerance_is_accepted():
+    parts = [rect("a", 40, 50, q=2)]
+    layout = lay(Placement("a", 0, "s", 0, 0), Placement("a", 1, "s", 40 - 1e-5, 0))
+    assert check_layout(parts, layout, tol=1e-3) == []
+
+
+def test_rejects_part_outside_container():
+    parts = [rect("a", 40, 50)]
+    probs = check_layout(parts, lay(Placement("a", 0, "s", 70, 0)))
+    assert any("outside container s" in p for p in probs)
+
+
+def test_rejects_part_on_defect_and_margin_to_defect():
+    parts = [rect("a", 20, 20)]
+    c = sheet(defects=[rectangle(50, 20, 55, 25)])
+    assert any("covers defect 0" in p
+               for p in check_layout(parts, lay(Placement("a", 0, "s", 40, 10), container=c)))
+    # 2 mm from the defect: fine without margin, rejected with a 5 mm margin
+    ok = lay(Placement("a", 0, "s", 28, 10), container=c)
+    assert check_layout(parts, ok) == []
+    assert any("margin" in p for p in check_layout(parts, ok, margin=5))
+
+
+def test_rejects_disallowed_rotation_and_mirroring():
+    parts = [l_shape("L", 30, 20, 5, rotations=[0, 180])]
+    # turned 180 degrees about its origin the L spans x 10..40, y 10..30
+    assert check_layout(parts, lay(Placement("L", 0, "s", 40, 30, angle=180))) == []
+    probs = check_layout(parts, lay(Placement("L", 0, "s", 40, 10, angle=90)))
+    assert any("angle 90 not allowed" in p for p in probs)
+    probs = check_layout(parts, lay(Placement("L", 0, "s", 40, 10, mirrored=True)))
+    assert any("mirroring is not allowed" in p for p in probs)
+    parts[0].mirror_allowed = True
+    assert check_layout(parts, lay(Placement("L", 0, "s", 40, 10, mirrored=True))) == []
+    assert check_layout(parts, lay(Placement("L", 0, "s", 20, 10, mirrored=True)))  # x < 0
+
+
+def test_rejects_spacing_shortfall():
+    parts = [rect("a", 20, 20, q=2)]
+    layout = lay(Placement("a", 0, "s", 0, 0), Placement("a", 1, "s", 22, 0))
+    assert check_layout(parts, layout, spacing=2.0) == []
+    probs = check_layout(parts, layout, spacing=3.0)
+    assert len(probs) == 1 and "apart (spacing 3 mm)" in probs[0]
+
+
+def test_part_inside_hole_of_another_is_valid():
+    parts = [frame("F", 60, 40, 5), rect("r", 20, 20)]
+    layout = lay(Placement("F", 0, "s", 0, 0), Placement("r", 0, "s", 10, 10))
+    assert check_layout(parts, layout) == []
+    layout = lay(Placement("F", 0, "s", 0, 0), Placement("r", 0, "s", 2, 10))
+    assert any("overlaps" in p for p in check_layout(parts, layout))
+
+
+def test_quality_zones():
+    # sheet base grade 1, a grade-3 zone on the left half
+    c = sheet(zones=[(3, rectangle(0, 0, 50, 50))], base_grade=1)
+    parts = [rect("good", 20, 20, grade=3), rect("any", 20, 20, grade=0)]
+    assert check_layout(parts, lay(Placement("good", 0, "s", 10, 10), container=c)) == []
+    probs = check_layout(parts, lay(Placement("good", 0, "s", 40, 10), container=c))
+    assert any("below grade 3" in p for p in probs)
+    assert check_layout(parts, lay(Placement("any", 0, "s", 70, 10), container=c)) == []
+    # nested zone: a grade-0 patch inside the grade-3 zone is off limits for grade 3
+    c2 = sheet(zones=[(3, rectangle(0, 0, 50, 50)), (0, rectangle(20, 20, 30, 30))], base_grade=1)
+    probs = check_layout(parts, lay(Placement("good", 0, "s", 15, 15), container=c2))
+    assert any("below grade 3" in p for p in probs)
+
+
+def test_rejects_bookkeeping_errors():
+    parts = [disc("d", 5, q=1)]
+    layout = lay(Placement("d", 0, "s", 0, 0), Placement("d", 0, "s", 20, 0),
+                 Placement("d", 3, "s", 40, 0), Placement("x", 0, "s", 60, 0),
+                 Placement("d", 0, "nowhere", 0, 0))
+    text = "\n".join(check_layout(parts, layout))
+    assert "placed twice" in text
+    assert "copy index outside quantity" in text
+    assert "x#0: unknown part" in text
+    assert "unknown container 'nowhere'" in text
