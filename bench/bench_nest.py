@@ -124,21 +124,24 @@ def main() -> int:
     ap.add_argument("--no-hide", action="store_true")
     a = ap.parse_args()
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2 cores)\n")
-    print(f"| instance | own density % | own length | own wall s | spyrrow density % | "
-          f"spyrrow length | spyrrow wall s | ratio own/spyrrow | fact-sheet spyrrow 60 s % |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print(f"| instance | own density % | own length | own wall s | own layouts tried | "
+          f"spyrrow density % | spyrrow length | spyrrow wall s | ratio own/spyrrow | "
+          f"fact-sheet spyrrow 60 s % |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     ratios = []
     for name in a.instances.split(","):
-        d, L, w, ok, _ = run_strip(name, "own", a.time, a.seed, a.workers)
+        d, L, w, ok, mo = run_strip(name, "own", a.time, a.seed, a.workers)
+        ev = mo.get("evaluations", 0)
         own = f"{d:.2f}" + ("" if ok else " INVALID")
         if a.no_sparrow:
-            print(f"| {name} | {own} | {L:.3f} | {w:.1f} | - | - | - | - | {FACT_SHEET[name]} |")
+            print(f"| {name} | {own} | {L:.3f} | {w:.1f} | {ev} | - | - | - | - | {FACT_SHEET[name]} |",
+                  flush=True)
             continue
         ds, Ls, ws, oks, _ = run_strip(name, "sparrow", a.time, a.sparrow_seed, a.workers)
         ratio = d / ds
         ratios.append(ratio)
         sp = f"{ds:.2f}" + ("" if oks else " INVALID")
-        print(f"| {name} | {own} | {L:.3f} | {w:.1f} | {sp} | {Ls:.3f} | {ws:.1f} | "
+        print(f"| {name} | {own} | {L:.3f} | {w:.1f} | {ev} | {sp} | {Ls:.3f} | {ws:.1f} | "
               f"**{ratio:.3f}** | {FACT_SHEET[name]} |", flush=True)
     if ratios:
         print(f"\nminimum ratio {min(ratios):.3f} (target >= 0.95 on every instance)")

@@ -18,7 +18,7 @@ FreeCAD = pytest.importorskip("FreeCAD") if os.environ.get("CI") != "true" else 
 
 from LeatherCutWorkbench.core import model  # noqa: E402
 from LeatherCutWorkbench.core.geometry import ArcSeg, CurveSeg, LineSeg  # noqa: E402
-from LeatherCutWorkbench.document import codec, objects, options, pipeline  # noqa: E402
+from LeatherCutWorkbench.document import codec, objects, pipeline  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gui.sample import write_sample  # noqa: E402
@@ -286,3 +286,26 @@ def test_freecadcmd_registers_importer_and_finds_venv_packages(tmp_path):
     proc = subprocess.run(["freecadcmd", "-c", code], env=env, capture_output=True, text=True, timeout=60)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "LC 1." in proc.stdout
+
+
+@pytest.mark.timeout(120)
+def test_nest_worker_processes_with_freecad_gui_stdin(doc, sample, monkeypatch):
+    """FreeCAD's GUI replaces sys.stdin by an object without close(); forked
+    nesting workers must still start (they close stdin first)."""
+
+    class GuiStdin:
+        def read(self, *args):
+            return ""
+
+    gui_stdin = GuiStdin()
+    monkeypatch.setattr(sys, "stdin", gui_stdin)
+    job = _recognised(doc, sample)
+    job.NestContainer = "sheet"
+    job.NestSheetWidth, job.NestSheetHeight = 400.0, 300.0
+    job.NestMargin, job.NestSpacing = 2.0, 2.0
+    job.NestTimeBudget, job.NestWorkers = 0.5, "2"
+    pipeline.run_stage(job, "Nest")
+    layout = objects.load_data(objects.stage_object(job, "Layout"))
+    assert layout.metrics.get("workers") == 2
+    assert len(pipeline.placed_objects(job)) == 5
+    assert sys.stdin is gui_stdin

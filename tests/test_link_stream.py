@@ -1,6 +1,7 @@
 """The live link against the fake controller: identify, stream modes, check
 mode, pause/resume/abort, lost link, journal; and reply parsing."""
 
+import math
 import os
 import threading
 import time
@@ -220,3 +221,40 @@ def test_send_session_runs_off_the_calling_thread(tmp_path):
         assert done.wait(10)
     assert s.error is None and s.outcome.ok and s.outcome.check.ok
     assert seen[-1]["percent"] == 100.0 and emu.executed == job.blocks
+
+
+def test_resume_program_rebuilds_state_before_the_segment():
+    from LeatherCutWorkbench.post.link import resume_job
+
+    prof, job = job_for()
+    r = resume_job(job, "3:3", prof)         # mid-outline, knife down, vacuum and oscillator on
+    head = r.blocks[:7]
+    assert head[0] == "G21G90G17G94" and head[1] == "M8" and head[2] == "G0Z5"
+    assert head[3].startswith("G0X280Y50C")   # start of 3:3 (the rounded corner), pre-turned
+    assert head[4] == "M3S18000" and head[5] == "G1Z-1.2F1500" and head[6] == "F12000"
+    assert r.index[:7] == [None] * 7 and r.segs[7] == "3:3"
+    # servo-lifted knife on stock GRBL: knife down is the servo line, after the move
+    sprof = load_profile("grbl11_knife_z_servo")
+    sjob = job_from_program("s.nc", gcode.build_program(sample_plan(), sprof))
+    s = resume_job(sjob, "3:3", sprof)
+    assert s.blocks[2:4] == ["M5", "G4P0.25"] and s.blocks[4].startswith("G0X280Y50Z")
+    assert s.blocks[5:7] == ["M3S1000", "G4P0.25"]
+    # skipping complete segments re-positions before the next one
+    k = resume_job(job, "3:2", prof, skip=["3:3"])
+    at = k.segs.index("3:4")
+    assert k.index[at] is None and k.blocks[at] == "G21G90G17G94"
+
+
+def test_locate_position_on_lines_and_arcs():
+    from LeatherCutWorkbench.post.gcode_reader import read_program
+    from LeatherCutWorkbench.post.link.recovery import locate
+
+    it = read_program("G21 G90\nG1 X10 Y0 C0 F100\nG3 X20 Y10 I0 J10 C90\n")
+    line, arc = it.moves
+    tol = {"X": 0.02, "Y": 0.02, "Z": 0.02, "C": 0.05}
+    assert locate(line, {"X": 5.0, "Y": 0.0, "Z": 0.0, "C": 0.0}, tol) == pytest.approx(0.5)
+    assert locate(line, {"X": 5.0, "Y": 0.5, "Z": 0.0, "C": 0.0}, tol) is None
+    mid = (10 + 10 * math.cos(math.radians(-45)), 10 + 10 * math.sin(math.radians(-45)))
+    assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 45.0}, tol) == pytest.approx(0.5)
+    assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 10.0}, tol) is None  # wrong knife angle
+    assert locate(arc, {"X": 0.0, "Y": 10.0, "Z": 0.0, "C": 45.0}, tol) is None      # off the sweep

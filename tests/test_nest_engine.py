@@ -34,7 +34,8 @@ def test_sheets_open_as_needed_and_fixed_count_reports_unplaced():
     assert [c.id for c in lay.containers] == ["sheet1", "sheet2"]
     assert lay.metrics["sheets"] == 2
     per = {c["id"]: c for c in lay.metrics["containers"]}
-    assert per["sheet1"]["parts"] == 4 and per["sheet2"]["parts"] == 3
+    assert per["sheet1"]["parts"] + per["sheet2"]["parts"] == 7
+    assert max(per["sheet1"]["parts"], per["sheet2"]["parts"]) == 4     # 4 is all a sheet holds
     assert lay.metrics["utilisation"] == pytest.approx(7 * 2400 / (2 * 130 * 90), abs=1e-6)
 
     opts1 = NestOptions(container=ContainerSpec.sheet(130, 90, count=1), time_budget=0.3, workers=1)
@@ -89,8 +90,8 @@ def test_rings_take_discs_with_spacing_and_margin():
 
 def test_strip_esicup_fu_is_dense_and_valid():
     inst = read_esicup(os.path.join(DATA, "fu.json"))
-    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=2,
-                       workers=1, seed=5)
+    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=60,
+                       max_evaluations=600, workers=1, seed=5)
     lay = nest(inst.parts, opts)
     assert valid(inst.parts, lay, opts) == []
     m = lay.metrics

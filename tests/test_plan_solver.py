@@ -136,13 +136,16 @@ def test_repair_gives_closest_valid_order():
     assert violations([0, 1, 2, 3], preds) == 1
 
 
+@pytest.mark.slow
 def test_ga_is_deterministic_per_seed():
-    D, clusters = random_gtsp(11, n_clusters=30, per=4)
-    a = solve_gtsp(D, clusters, time_limit=60, seed=5)
-    b = solve_gtsp(D, clusters, time_limit=60, seed=5)
+    # the budget is generous: the GA stops by convergence, not by the clock
+    D, clusters = random_gtsp(11, n_clusters=15, per=4)
+    a = solve_gtsp(D, clusters, time_limit=120, seed=5)
+    b = solve_gtsp(D, clusters, time_limit=120, seed=5)
     assert a == b
 
 
+@pytest.mark.slow
 def test_ga_beats_nearest_neighbour_on_random_gtsp():
     rng = np.random.default_rng(2)
     pts = rng.uniform(0, 1000, (1 + 150 * 5, 2))
@@ -150,7 +153,9 @@ def test_ga_beats_nearest_neighbour_on_random_gtsp():
     inst = EuclidInstance(clusters, pts)
     t, c = nearest_neighbour(inst)
     nn = inst.tour_cost(t, c)
-    res = run_ga(inst, time_limit=4, seed=1)
+    # a fixed amount of work (not a time budget): the machine may be loaded
+    res = run_ga(inst, time_limit=600, seed=1, max_generations=5)
+    assert res.iterations == 5
     assert res.cost < 0.9 * nn
     assert res.nn_cost == pytest.approx(nn)
 

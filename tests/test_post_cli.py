@@ -4,7 +4,6 @@ fake controller."""
 
 import json
 import math
-import os
 
 import ezdxf
 import pytest
@@ -149,3 +148,28 @@ def test_send_refuses_missing_axis(tmp_path, main, capsys):
         assert emu.executed == []
     finally:
         emu.close()
+
+
+def test_send_stops_on_error_and_names_line_and_resume_point(tmp_path, main, capsys):
+    dxf = drawing(tmp_path)
+    nc = tmp_path / "job.nc"
+    assert main(["post", dxf, "--machine", "grblhal_tangential", "-o", str(nc)] + FASTPLAN) == 0
+    capsys.readouterr()
+    emu = FakeController(flavour="grblhal", axes="XYZC", planner_blocks=4, block_time=0.003,
+                         faults=[Fault("error", 25, code=33)]).start()
+    try:
+        code = main(["send", str(nc), "--port", emu.port, "--mode", "char-count", "--json"])
+        data = json.loads(capsys.readouterr().out)
+    finally:
+        emu.close()
+    assert code == 1
+    res = data["result"]
+    assert res["status"] == "error" and res["message"].startswith("error:33")
+    assert res["stopped_safely"] and res["position_trusted"]
+    lines = nc.read_text().splitlines()
+    assert lines[res["line"] - 1].replace(" ", "") == res["block"]
+    # the planner still held moves before the refused line: the machine stopped
+    # at or before the refused line's segment, and the resume starts there
+    key = lambda sid: tuple(int(v) for v in sid.split(":"))
+    assert data["resume_basis"] == "position"
+    assert key(data["resume_from"]) <= key(res["segment"])

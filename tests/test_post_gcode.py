@@ -212,3 +212,36 @@ def test_planner_lifts_are_honoured_too():
     lines = lifted.splitlines()
     at = lines.index("(seg 1:2)")
     assert lines[at + 1:at + 4] == ["G0 Z5", "G0 C5", "G1 Z-1.2 F1500"]
+
+
+@pytest.mark.parametrize("name", ["grblhal_tangential", "grbl11_knife_z_servo",
+                                  "linuxcnc_tangential"])
+def test_feed_keeps_xy_speed_while_the_knife_turns(name):
+    """GRBL counts rotary units in F: the F word is raised so XY still runs at
+    cut_feed (capped at max_feed); LinuxCNC applies F to XY only."""
+    profile = load_profile(name)
+    it = trace(gcode.export(sample_plan(), profile), profile)
+    cuts, _ = traced_cuts(it.moves, profile)
+    ax = profile.rotary_axis
+    raised = capped = 0
+    for m in cuts:
+        if m.kind == "arc":
+            r = math.dist(m.center, (m.start["X"], m.start["Y"]))
+            a0 = math.atan2(m.start["Y"] - m.center[1], m.start["X"] - m.center[0])
+            a1 = math.atan2(m.end["Y"] - m.center[1], m.end["X"] - m.center[0])
+            xy = r * ((a1 - a0) % (2 * math.pi) if m.ccw else (a0 - a1) % (2 * math.pi))
+        else:
+            xy = math.dist((m.start["X"], m.start["Y"]), (m.end["X"], m.end["Y"]))
+        turn = abs(m.end[ax] - m.start[ax])
+        if not profile.rotary_in_feed:
+            assert m.feed == profile.cut_feed
+            continue
+        xy_speed = m.feed * xy / math.hypot(xy, turn)
+        if m.feed >= profile.max_feed:
+            capped += 1
+            assert xy_speed <= profile.cut_feed
+        else:
+            assert xy_speed == pytest.approx(profile.cut_feed, rel=2e-3), m.text
+            raised += m.feed > profile.cut_feed
+    if profile.rotary_in_feed and profile.units_per_turn == 360:
+        assert raised > 10 and capped > 0

@@ -151,3 +151,20 @@ def test_origin_offsets_output_and_home_is_machine_zero():
     plan.home = (-100.0, -50.0)             # machine zero, outside the table
     lines = gcode.export(plan, p).splitlines()
     assert "G0 X110 Y60 C0" in lines and "G0 X0 Y0" in lines
+
+
+def test_table_edge_tolerance_is_the_output_resolution():
+    p = load_profile("grblhal_tangential")
+    gcode.export(rect_plan(-0.0004, 0, 100, 50), p)          # float noise from nesting: fine
+    with pytest.raises(SafetyError):
+        gcode.export(rect_plan(-0.01, 0, 100, 50), p)        # 10 um off the table: refused
+
+
+def test_dxf_marks_layer():
+    from LeatherCutWorkbench.core.model import Mark
+    text = dxf_out.export(sample_plan(), None,
+                          dxf_out.DxfOptions(marks=[Mark((120.0, 60.0), "drill")]))
+    import io
+    doc = ezdxf.read(io.StringIO(text))
+    pts = doc.modelspace().query('POINT[layer=="MARKS"]')
+    assert len(pts) == 1 and tuple(pts[0].dxf.location)[:2] == (120.0, 60.0)

@@ -100,3 +100,14 @@ def test_console_script(dxf):
     bad = subprocess.run([exe, "recognise", dxf + ".nope"], capture_output=True, text=True,
                          timeout=120)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1
+
+
+def test_no_unfold_option_reaches_the_stage(samples_dir):
+    path = os.path.join(samples_dir, "WM_SLIM_TANK.DXF")
+    whole = call([path, "--json"]).data
+    half = call([path, "--no-unfold", "--json"]).data
+    assert whole["counts"]["parts"] == half["counts"]["parts"] == 28
+    a = sum(p["net_area"] for p in whole["parts"])
+    b = sum(p["net_area"] for p in half["parts"])
+    assert a == pytest.approx(2 * b, rel=1e-6)
+    assert any(f["code"] == "half-piece" for f in half["findings"])

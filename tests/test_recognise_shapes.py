@@ -2,6 +2,7 @@
 
 import math
 
+import FreeCAD
 import pytest
 
 from LeatherCutWorkbench.core.errors import InputError
@@ -10,6 +11,7 @@ from LeatherCutWorkbench.core.model import (ArcEdge, EdgeSource, LineEdge, Mark,
                                             SplineEdge)
 from LeatherCutWorkbench.core.recognition import RecogniseOptions, recognise
 from LeatherCutWorkbench.core.recognition.from_part import signed_path_area
+from LeatherCutWorkbench.core.recognition.to_part import to_segment
 
 import recognise_shapes as S
 
@@ -392,3 +394,64 @@ def test_crossing_contours_are_reported():
 def test_marks_without_any_part_are_reported():
     rec = recognise(S.drawing([], marks=[Mark((1, 1), "drill")]))
     assert not rec.parts and [f.code for f in rec.findings] == ["mark-outside-parts"]
+
+
+def test_spline_in_a_common_edge_layout_with_loose_ends():
+    # a spline arch over a 40 mm base, split in two cells by a vertical line
+    # ending on the arch (a T-junction on a curve); the spline's first end misses
+    # the base line's end by 5 um (inside the join tolerance)
+    arch = S.open_spline_with_line()
+    sp = arch[0]
+    sp.poles[0] = (0.005, 0.0)
+    top = to_segment(sp, 0.001)[1]
+    apex = top.valueAt(top.Curve.parameter(FreeCAD.Vector(20, 40, 0)))
+    assert apex.x == pytest.approx(20.0, abs=0.01)
+    mid = LineEdge((20.0, 0.0), (20.0, apex.y), S.src())
+    rec = run([sp, arch[1], mid])
+    act = rec.active_parts()
+    assert len(act) == 2 and not rec.flags
+    total = sum(signed_path_area(p.outer.segments) for p in act)
+    whole = signed_path_area(run(arch).parts[0].outer.segments)
+    assert total == pytest.approx(whole, rel=1e-3)
+    assert all(p.outer.shared for p in act)
+
+
+def test_outline_drawn_twice_is_kept_once_but_same_box_shapes_are_not():
+    twice = S.polyline([(0, 0), (10, 0), (10, 10), (0, 10)]) + \
+        S.polyline([(0, 0), (0, 10), (10, 10), (10, 0)])          # reversed copy
+    rec = run(twice + [S.circle(40, 5, 5)] + S.rect(35, 0, 10, 10))
+    assert len(rec.parts) == 2
+    square = next(p for p in rec.parts if p.outer.bbox[0] < 20)
+    assert not square.holes
+    framed = next(p for p in rec.parts if p.outer.bbox[0] > 20)
+    assert len(framed.holes) == 1      # the inscribed circle touches the box on all sides
+
+
+def test_lead_in_stopping_short_of_the_contour():
+    edges = S.rect(0, 0, 20, 10) + [LineEdge((5.0, -4.0), (5.0, -0.3), S.src())]
+    rec = run(edges)
+    (p,) = rec.parts
+    assert not p.lead_ins and len(rec.open_chains) == 1
+    (f,) = rec.flags
+    assert f.kind == "under" and f.gap == pytest.approx(0.3) and f.ids == ["O1"]
+    (b,) = f.fix
+    assert b.start == pytest.approx((5.0, -0.3)) and b.end == pytest.approx((5.0, 0.0))
+    fixed = run(edges, close_gaps=True)
+    (li,) = fixed.parts[0].lead_ins
+    assert li.start == pytest.approx((5.0, -4.0)) and li.end == pytest.approx((5.0, 0.0))
+    assert li.length == pytest.approx(4.0) and not fixed.open_chains
+    assert fixed.flags[0].accepted is True and fixed.flags[0].ids == [li.id]
+    # farther than the gap tolerance: stays an open chain without a flag
+    far = run(S.rect(0, 0, 20, 10) + [LineEdge((5.0, -4.0), (5.0, -0.6), S.src())])
+    assert len(far.open_chains) == 1 and not far.flags
+
+
+def test_under_flags_say_what_accepting_does():
+    edges = (S.square_with_gap(0.2) + S.shifted(S.square_overshoot(0.3), 50, 0)
+             + S.shifted(S.rect(0, 0, 20, 10), 100, 0)
+             + [LineEdge((105.0, -4.0), (105.0, -0.3), S.src())])
+    rec = run(edges)
+    actions = sorted(f.action for f in rec.flags)
+    assert actions == ["close", "join", "trim"]
+    assert all(f.kind == "under" for f in rec.flags)
+    assert next(f for f in rec.flags if f.action == "trim").fix == []

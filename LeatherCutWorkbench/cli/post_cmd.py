@@ -105,15 +105,16 @@ def plan_drawing(args: argparse.Namespace, profile) -> Any:
     return run_job(args.file, opts)
 
 
-def render(plan, profile, fmt: str, options) -> str:
-    """The output text for ``fmt`` (safety-checked; raises SafetyError)."""
+def render(plan, profile, fmt: str, options, marks=()) -> str:
+    """The output text for ``fmt`` (safety-checked; raises SafetyError).
+    ``marks`` (drill holes, notches of the parts) go on the DXF's MARKS layer."""
     from ..post import dxf_out, gcode, hpgl
 
     if fmt == "gcode":
         return gcode.export(plan, profile, options)
     if fmt == "hpgl":
         return hpgl.export(plan, profile, options)
-    return dxf_out.export(plan, profile)
+    return dxf_out.export(plan, profile, dxf_out.DxfOptions(marks=list(marks)))
 
 
 def run(args: argparse.Namespace) -> Report:
@@ -128,7 +129,8 @@ def run(args: argparse.Namespace) -> Report:
         raise InputError(f"profile {profile.name} is for {profile.dialect}, not HP-GL",
                          source=args.file)
     result = plan_drawing(args, profile)
-    text = render(result.plan, profile, fmt, options_from_args(args))
+    marks = [m for part in result.parts_to_cut for m in part.marks]
+    text = render(result.plan, profile, fmt, options_from_args(args), marks)
     out = args.post_output
     tmp = out + ".part"
     try:

@@ -54,6 +54,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                                        "flagged over-recognised (e.g. C5,C9)")
     g.add_argument(f"--{pre}exclude", dest="recognise_exclude", type=_ids, default=frozenset(),
                    metavar="IDS", help="comma-separated contour/part ids not to cut")
+    g.add_argument("--no-unfold", dest="recognise_unfold", action="store_false",
+                   help="keep pattern pieces drawn as a half against a fold (mirror) line "
+                        "as drawn instead of unfolding them into the whole piece")
     g.add_argument("--chord-tol", dest="recognise_chord_tol", type=_tol, default=0.01,
                    metavar="MM", help="ellipses and splines become polylines within this "
                                       "deviation (default 0.01 mm)")
@@ -66,7 +69,7 @@ def options_from_args(args: argparse.Namespace):
     opts = RecogniseOptions(join_tol=args.recognise_join_tol, gap_tol=args.recognise_gap_tol,
                             close_gaps=args.recognise_close_gaps,
                             include=args.recognise_include, exclude=args.recognise_exclude,
-                            chord_tol=args.recognise_chord_tol)
+                            chord_tol=args.recognise_chord_tol, unfold=args.recognise_unfold)
     opts.validate()
     return opts
 
@@ -166,7 +169,8 @@ def recognition_json(rec: Recognition, path: str) -> Dict[str, Any]:
                         for c in rec.open_chains],
         "flags": [{"id": f.id, "kind": f.kind, "ids": list(f.ids),
                    "gap": None if f.gap is None else round(f.gap, 6), "reason": f.reason,
-                   "fix": [_seg_json(s) for s in f.fix], "accepted": f.accepted}
+                   "fix": [_seg_json(s) for s in f.fix], "action": f.action,
+                   "accepted": f.accepted}
                   for f in rec.flags],
     }
 

@@ -176,5 +176,8 @@ def run(args: argparse.Namespace) -> Report:
     text = (f"{args.file}: job stopped ({res.status}){where}: {res.message}. "
             f"{'Stopped safely (feed hold, reset, knife up). ' if res.stopped_safely else ''}"
             f"Journal {jpath}; check the machine (re-home if the position was lost), then "
-            f"resume with --resume-from {out.resume_from}.")
+            f"resume with --resume-from {out.resume_from}"
+            + (" (from where the controller reported the tool stopped)." if out.basis == "position"
+               else " (position lost: from the last point known executed; part of the item "
+                    "being cut may be cut again)."))
     return Report(data=data, text=text, exit_code=1)

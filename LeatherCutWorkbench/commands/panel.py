@@ -15,7 +15,7 @@ from typing import Optional
 
 import FreeCAD
 import FreeCADGui as Gui
-from PySide import QtCore, QtGui
+from PySide import QtGui
 
 from ..core.errors import CancelledError, LeatherCutError
 from . import paths, runner

@@ -5,7 +5,7 @@ from __future__ import annotations
 import FreeCAD
 import FreeCADGui as Gui
 
-from ..document import objects, pipeline
+from ..document import objects
 from . import base, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP

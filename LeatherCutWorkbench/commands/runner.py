@@ -11,7 +11,6 @@ status label (its Cancel button cancels).  Cancelling makes the stage's
 from __future__ import annotations
 
 import threading
-import time
 from typing import Any, Optional
 
 import FreeCAD
@@ -95,13 +94,3 @@ def compute_in_thread(compute, inputs, state: StageRun, title: str, panel=None):
     if panel is not None:
         panel.show_progress(1.0, "")
     return state.result
-
-
-def wait(seconds: float) -> None:
-    """Let the GUI breathe for a while (used by animations and the link panel)."""
-    from PySide import QtCore, QtGui
-    end = time.monotonic() + seconds
-    app = QtGui.QApplication.instance()
-    while time.monotonic() < end:
-        app.processEvents(QtCore.QEventLoop.AllEvents, 20)
-        time.sleep(0.005)

@@ -19,7 +19,6 @@ import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
 from ..core.errors import InputError, LeatherCutError
-from ..document import objects
 from . import base, paths
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP

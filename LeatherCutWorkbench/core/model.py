@@ -316,6 +316,11 @@ class Flag:
     gap: Optional[float] = None
     fix: List[Segment] = field(default_factory=list)
     accepted: Optional[bool] = None
+    # what accepting the flag does: "exclude" (over: the contour is not cut),
+    # "close" (under: chains + fix form a closed outline), "join" (under: fix joins
+    # the chain to a contour, it becomes a lead-in), "trim" (under: drop the
+    # chain, a stub past a corner; fix is empty)
+    action: str = "close"
 
 
 @dataclass

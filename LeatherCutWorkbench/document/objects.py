@@ -92,7 +92,7 @@ def restoring(obj) -> bool:
     return bool(getattr(doc, "Restoring", False)) or "Restore" in getattr(obj, "State", [])
 
 
-def add_stage_properties(obj, role: str) -> None:
+def add_stage_properties(obj) -> None:
     """Hidden ``Data`` (stored stage value) and read-only ``OutOfDate``."""
     if "Data" not in obj.PropertiesList:
         obj.addProperty("App::PropertyString", "Data", "LeatherCut",
@@ -170,7 +170,7 @@ class StageProxy(Proxy):
 
     def __init__(self, obj):
         super().__init__(obj)
-        add_stage_properties(obj, self.ROLE)
+        add_stage_properties(obj)
 
 
 class DrawingProxy(StageProxy):

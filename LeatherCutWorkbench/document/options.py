@@ -105,7 +105,7 @@ def _to_json_text(value: Any) -> str:
     return json.dumps(value)
 
 
-def add_properties(obj, stage: StageOptions, doc_of: str = "") -> List[str]:
+def add_properties(obj, stage: StageOptions) -> List[str]:
     """Add the stage's option properties (with defaults) to ``obj``; returns names."""
     names = []
     cls = options_class(stage)

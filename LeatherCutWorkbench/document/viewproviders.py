@@ -11,7 +11,6 @@ from __future__ import annotations
 import os
 from typing import List, Optional, Sequence, Tuple
 
-import FreeCAD
 import FreeCADGui as Gui
 
 from . import objects, style
@@ -67,13 +66,26 @@ class ViewProvider:
 class JobViewProvider(ViewProvider):
     ICON = "Job"
 
-    def doubleClicked(self, vobj):
-        Gui.runCommand("LeatherCut_RunJob")
-        return True
+
+def _open_stage_panel(vobj, command: str) -> bool:
+    """Double-click on a stage object: select its job and open the stage's panel."""
+    job = objects.job_of(vobj.Object)
+    if job is None or Gui.Control.activeDialog():
+        return False
+    Gui.Selection.clearSelection()
+    Gui.Selection.addSelection(job)
+    Gui.runCommand(command)
+    return True
 
 
 class StageViewProvider(ViewProvider):
     ICONS = {"Drawing": "ImportDXF", "Recognition": "Recognise", "Layout": "AutoNest"}
+    #: double-click re-opens the panel of the stage that made the object
+    COMMANDS = {"Recognition": "LeatherCut_Recognise", "Layout": "LeatherCut_AutoNest"}
+
+    def doubleClicked(self, vobj):
+        command = self.COMMANDS.get(objects.role(vobj.Object))
+        return _open_stage_panel(vobj, command) if command else False
 
     def getIcon(self):
         obj = getattr(self, "Object", None)
@@ -117,6 +129,9 @@ class CutPathViewProvider(ViewProvider):
     and the simulation knife, drawn with Coin nodes."""
 
     ICON = "PlanPath"
+
+    def doubleClicked(self, vobj):
+        return _open_stage_panel(vobj, "LeatherCut_PlanPath")
 
     def __init__(self, vobj):
         super().__init__(vobj)

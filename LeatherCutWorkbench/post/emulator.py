@@ -35,6 +35,9 @@ synchronises them.  A feed hold stops execution (``Hold:0``), a reset flushes
 the queue (``ALARM:3`` when it was moving).  With 0 (default) every line is
 executed when it is acknowledged.
 
+Written here by hand: PyPI has no GRBL emulator (the serial mocks there only
+replay canned bytes, without a receive buffer, planner or realtime commands).
+
 ``executed`` lists every G-code line the machine executed outside check mode,
 in order.  ``results`` holds, for every G-code line it processed, a list
 ``[session, block, reply, executed]`` where ``session`` counts resets,
@@ -99,7 +102,6 @@ class FakeController:
         tty.setraw(self.master)
         self.port = os.ttyname(self.slave)
         self._rx = bytearray()
-        self._lock = threading.Lock()
         self._stop = threading.Event()
         self._state = "Alarm" if self.homing else "Idle"
         self._check = False

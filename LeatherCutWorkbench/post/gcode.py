@@ -26,6 +26,7 @@ link reads them back from a ``.nc`` file to journal and resume by segment.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 
@@ -148,6 +149,36 @@ class RotaryWriter:
         return f" {p.rotary_axis}{text}"
 
 
+def rotary_feed(m: Move, heading_before: Optional[float], profile: MachineProfile) -> float:
+    """F for a cutting move that also turns the knife.
+
+    GRBL and grblHAL take F along the move's length in *all* axes, rotary units
+    counted like mm: a 90 degree turn on a 3 mm arc would crawl at 3 % of the
+    cutting speed.  With ``rotary_in_feed`` the F word is scaled so the knife
+    still cuts at ``cut_feed`` in XY (capped at ``max_feed``).  LinuxCNC
+    applies F to the linear axes only (``rotary_in_feed`` false)."""
+    if (not profile.tangential or not profile.rotary_in_feed or heading_before is None
+            or m.heading is None):
+        return m.feed
+    turn_units = abs(m.heading - heading_before) * profile.units_per_turn / 360.0
+    if turn_units < 1e-9:
+        return m.feed
+    if m.kind == "arc":
+        r = math.dist(m.center, m.start)
+        a0 = math.atan2(m.start[1] - m.center[1], m.start[0] - m.center[0])
+        a1 = math.atan2(m.y - m.center[1], m.x - m.center[0])
+        sweep = (a1 - a0) % (2 * math.pi) if m.ccw else (a0 - a1) % (2 * math.pi)
+        xy = r * sweep
+    else:
+        xy = math.dist(m.start, (m.x, m.y))
+    if xy < 1e-9:
+        return m.feed
+    factor = math.hypot(xy, turn_units) / xy
+    if factor < 1.001:                     # under 0.1 %: keep the F word unchanged
+        return m.feed
+    return min(m.feed * factor, profile.max_feed)
+
+
 def build_program(plan: CutPlan, profile: MachineProfile,
                   options: Optional[ExportOptions] = None,
                   toolpath: Optional[Toolpath] = None) -> Program:
@@ -187,6 +218,7 @@ def build_program(plan: CutPlan, profile: MachineProfile,
         feed = f
         return f" F{fmt(f, 0)}"
 
+    heading: Optional[float] = None        # knife heading before the move
     for m in tp.moves:
         if opts.comments and m.seg and m.seg != last_seg:
             if m.seg.endswith(":1"):
@@ -199,13 +231,15 @@ def build_program(plan: CutPlan, profile: MachineProfile,
         if m.kind == "rapid":
             prog.add(f"G0 {xy}{rot.word(m.heading)}", m.seg)
         elif m.kind == "line":
-            prog.add(f"G1 {xy}{rot.word(m.heading)}{feed_word(m.feed)}", m.seg)
+            f = rotary_feed(m, heading, profile)
+            prog.add(f"G1 {xy}{rot.word(m.heading)}{feed_word(f)}", m.seg)
         elif m.kind == "arc":
             i = m.center[0] - m.start[0]
             j = m.center[1] - m.start[1]
             g = "G3" if m.ccw else "G2"
+            f = rotary_feed(m, heading, profile)
             prog.add(f"{g} {xy} I{fmt(i, d)} J{fmt(j, d)}{rot.word(m.heading)}"
-                     f"{feed_word(m.feed)}", m.seg)
+                     f"{feed_word(f)}", m.seg)
         elif m.kind == "turn":
             w = rot.word(m.heading)
             if w:
@@ -222,6 +256,8 @@ def build_program(plan: CutPlan, profile: MachineProfile,
             prog.add(f"G4 P{fmt(m.seconds, 3)}", m.seg)
         elif m.kind == "sync":
             prog.add("G4 P0", m.seg)
+        if m.heading is not None:
+            heading = m.heading
     for line in expand(profile.footer, profile):
         prog.add(line)
 

@@ -13,6 +13,11 @@ firmware would answer (1 letter expected, 2 bad number, 20 unsupported command,
 21 modal group violation, 22 feed not set, 25 repeated word, 26 no axis words,
 33 arc target invalid, 35 no arc offset, 36 unused words).  Units: the trace is
 in mm (G20 programs are converted), angles in axis units.
+
+Written here by hand: the Python G-code parsers on PyPI read words but do not
+answer with GRBL's error numbers, wrapped-rotary semantics or the modal state a
+resume needs.  The LinuxCNC output is also checked against the real LinuxCNC
+interpreter (tests/test_post_rs274.py).
 """
 
 from __future__ import annotations
@@ -147,14 +152,6 @@ class Interpreter:
             return []
         words = parse_words(block, line_no)
         return self._run(words, line, line_no)
-
-    def modal_lines(self) -> List[str]:
-        """Blocks that rebuild the current modal state (units, distance, plane,
-        feed mode, coolant) on a freshly reset controller; spindle separately."""
-        s = self.state
-        out = [f"{s.units} {s.distance} {s.plane} {s.feed_mode}"]
-        out += sorted(s.coolant)
-        return out
 
     # ---------------------------------------------------------------- internal
     def _run(self, words: List[Tuple[str, float]], text: str, line_no: int) -> List[TraceMove]:

@@ -15,7 +15,7 @@ import dataclasses
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Tuple
 
 from ..core.errors import InputError
 
@@ -50,6 +50,7 @@ class MachineProfile:
     rotary_wrap: bool = False             # LinuxCNC WRAPPED_ROTARY: sign selects direction
     units_per_turn: float = 360.0         # axis units for one knife turn (3.6 on GRBL Z)
     heading_offset: float = 0.0           # degrees added to the path heading
+    rotary_in_feed: bool = True           # the controller counts rotary units in F (GRBL)
     lift_angle: float = 15.0              # degrees; larger turns lift, turn and plunge
     # knife / torch up and down
     lift_axis: str = "Z"                  # "" = lifted by an output (servo, torch on/off)
@@ -289,12 +290,3 @@ def save_user_profile(profile: MachineProfile) -> str:
         json.dump(profile.to_json(), fh, indent=2)
         fh.write("\n")
     return path
-
-
-def find_profile_path(name: str) -> Optional[str]:
-    """Path of the profile file a name resolves to, or None."""
-    for folder in _search_dirs():
-        cand = os.path.join(folder, name + ".json")
-        if os.path.isfile(cand):
-            return cand
-    return None

@@ -60,7 +60,7 @@ def _where(m: Move, tp: Toolpath) -> str:
 def check_moves(tp: Toolpath, profile: MachineProfile) -> None:
     """Table limits and feeds of every neutral move."""
     xmin, ymin, xmax, ymax = profile.table_limits()
-    tol = 1e-6
+    tol = 10.0 ** -profile.decimals      # below the output resolution: float noise
     for m in tp.moves:
         if m.kind not in ("rapid", "line", "arc"):
             continue
@@ -73,7 +73,8 @@ def check_moves(tp: Toolpath, profile: MachineProfile) -> None:
             if not (xmin - tol <= x <= xmax + tol and ymin - tol <= y <= ymax + tol):
                 raise SafetyError(
                     f"{m.kind} to ({m.x:.3f}, {m.y:.3f}) mm reaches ({x:.3f}, {y:.3f}), outside "
-                    f"the table {xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name}",
+                    f"the table {xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name} "
+                    f"(move the drawing onto the table, or nest it with --sheet/--hide)",
                     source=_where(m, tp))
         if not (0 < m.feed <= profile.max_feed):
             raise SafetyError(

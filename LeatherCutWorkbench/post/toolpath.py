@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence, Tuple
+from typing import List, Optional, Tuple
 
 from ..core.geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment, dist, turn_angle
 from ..core.model import CutItem, CutPlan
@@ -221,37 +221,3 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         if getattr(profile, name):
             add("io", name=name)
     return tp
-
-
-def cut_polylines(tp: Toolpath, chord_tol: float = 0.01) -> List[List[Point]]:
-    """Knife-down paths of a toolpath as polylines (mm), for previews and tests."""
-    out: List[List[Point]] = []
-    cur: Optional[List[Point]] = None
-    down = False
-    for m in tp.moves:
-        if m.kind == "down":
-            down = True
-            cur = None
-        elif m.kind == "up":
-            down = False
-            cur = None
-        elif m.kind in ("line", "arc") and down:
-            if cur is None:
-                cur = [m.start]
-                out.append(cur)
-            if m.kind == "line":
-                cur.append((m.x, m.y))
-            else:
-                c = m.center
-                r = dist(c, m.start)
-                a0 = math.degrees(math.atan2(m.start[1] - c[1], m.start[0] - c[0]))
-                a1 = math.degrees(math.atan2(m.y - c[1], m.x - c[0]))
-                sweep = (a1 - a0) % 360.0 if m.ccw else -((a0 - a1) % 360.0)
-                arc = ArcSeg(c, r, a0, sweep)
-                cur.extend(arc.points(chord_tol)[1:])
-    return out
-
-
-def plan_segments(plan: CutPlan) -> List[Sequence[Segment]]:
-    """The plan's cut segments, item by item (what a traced job must reproduce)."""
-    return [list(it.segments) for it in plan.items]

@@ -21,11 +21,33 @@ def check(name, cond, detail=""):
     print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)}", flush=True)
 
 
+def check_preferences_page():
+    """Edit ▸ Preferences ▸ LeatherCut: change the join tolerance, press OK; new jobs use it."""
+    from PySide import QtGui
+    seen = {}
+
+    def edit_and_accept():
+        dialog = QtGui.QApplication.activeModalWidget()
+        box = dialog.findChild(QtGui.QDoubleSpinBox, "RecogniseJoinTol") if dialog else None
+        seen["found"] = box is not None
+        if box is not None:
+            box.setValue(0.02)
+        if dialog is not None:
+            dialog.accept()
+
+    QtCore.QTimer.singleShot(1500, edit_and_accept)
+    Gui.showPreferences("LeatherCut", 0)
+    check("preferences page has the LeatherCut fields", seen.get("found"), seen)
+    value = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Mod/LeatherCut").GetFloat("RecogniseJoinTol")
+    check("preference saved", abs(value - 0.02) < 1e-9, value)
+
+
 def steps():
     from LeatherCutWorkbench.commands import panel
     from LeatherCutWorkbench.document import objects
 
     Gui.activateWorkbench("LeatherCutWB")
+    check_preferences_page()
     doc = FreeCAD.newDocument("Imported")
     # what File > Import does with the "LeatherCut DXF drawing" filter selected
     import importlib
@@ -36,6 +58,7 @@ def steps():
     jobs = objects.jobs(doc)
     check("importer made a job", len(jobs) == 1, [o.Name for o in doc.Objects][:10])
     job = jobs[0]
+    check("new job takes the preference", abs(job.RecogniseJoinTol - 0.02) < 1e-9, job.RecogniseJoinTol)
     drawing = objects.stage_object(job, "Drawing")
     check("layers imported", drawing is not None and len(drawing.Group) >= 1
           and len(drawing.Group[0].Shape.Edges) > 100,

@@ -105,7 +105,7 @@ def steps():
     p = command_panel("LeatherCut_AutoNest")
     for prop, value in (("NestContainer", "sheet"), ("NestSheetWidth", 400.0), ("NestSheetHeight", 300.0),
                         ("NestMargin", 2.0), ("NestSpacing", 2.0), ("NestTimeBudget", 1.0),
-                        ("NestWorkers", "1")):
+                        ("NestWorkers", "")):   # all cores: worker processes forked from the GUI
         p.set_widget(prop, value)
     check("nest options bound", job.NestContainer == "sheet" and job.NestSheetWidth == 400.0, job.NestContainer)
     # a long search, cancelled from the panel while it runs: the GUI keeps serving events

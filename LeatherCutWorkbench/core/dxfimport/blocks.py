@@ -59,10 +59,10 @@ class Walker:
             role = self._roles[layer] = self.rules.role_of_layer(layer)
         return role
 
-    def walk_modelspace(self, root: Affine, progress: Optional[ProgressFn],
-                        lo: float, hi: float) -> None:
-        msp = self.doc.modelspace()
-        entities = list(msp)
+    def walk(self, entities: "list[Any]", root: Affine, progress: Optional[ProgressFn],
+             lo: float, hi: float) -> None:
+        """Convert the model-space ``entities`` under ``root`` (unit scale);
+        progress goes from ``lo`` to ``hi``."""
         n = max(len(entities), 1)
         step = max(n // 50, 500)
         for i, e in enumerate(entities):

@@ -12,8 +12,8 @@ from __future__ import annotations
 import gc
 from collections import Counter
 from contextlib import contextmanager
-from operator import attrgetter
-from typing import Any, Dict, List, Optional, Tuple
+from operator import attrgetter, methodcaller
+from typing import Any, Dict, Iterable, List, Optional, Tuple
 
 from ..errors import InputError
 from ..model import Drawing, Finding
@@ -67,11 +67,13 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     findings: List[Finding] = list(opened.findings)
     report(progress, 0.35, "analysing the drawing")
 
-    msp = doc.modelspace()
-    found = Counter(e.dxftype() for e in msp)
-    ms_texts = _modelspace_texts(msp)
+    entities = list(doc.modelspace())
+    types = list(map(methodcaller("dxftype"), entities))
+    found = Counter(types)
+    ms_texts = _modelspace_texts(e for e, t in zip(entities, types) if t in ("TEXT", "MTEXT"))
+    inserts = [e for e, t in zip(entities, types) if t == "INSERT"]
     is_aama = options.pattern_mode == "aama" or (
-        options.pattern_mode == "auto" and aama.looks_like_aama(ms_texts, _probe_block_texts(doc, msp)))
+        options.pattern_mode == "auto" and aama.looks_like_aama(ms_texts, _probe_block_texts(doc, inserts)))
     unit, unit_source, insunits = _decide_units(doc, ms_texts, is_aama, options, path, findings)
     scale = MM_PER_UNIT[unit]
 
@@ -83,7 +85,7 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     else:
         rules = Rules(lambda layer: "cut", lambda layer: "point")
     walker = Walker(doc, out, rules)
-    walker.walk_modelspace(scale_affine(scale), progress, 0.35, 0.8)
+    walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8)
     out.finish()
     findings.extend(out.findings)
     paper = _paper_space_notes(doc, path, findings)
@@ -134,9 +136,9 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     return drawing
 
 
-def _modelspace_texts(msp: Any) -> List[str]:
+def _modelspace_texts(entities: Iterable[Any]) -> List[str]:
     texts = []
-    for e in msp.query("TEXT MTEXT"):
+    for e in entities:
         try:
             texts.append(e.plain_text() if e.dxftype() == "TEXT" else e.plain_text(split=False))
         except Exception:  # a broken text must not stop the import
@@ -144,9 +146,9 @@ def _modelspace_texts(msp: Any) -> List[str]:
     return texts
 
 
-def _probe_block_texts(doc: Any, msp: Any) -> List[str]:
+def _probe_block_texts(doc: Any, inserts: List[Any]) -> List[str]:
     texts: List[str] = []
-    for ins in msp.query("INSERT")[:_AAMA_PROBE_BLOCKS]:
+    for ins in inserts[:_AAMA_PROBE_BLOCKS]:
         block = doc.blocks.get(ins.dxf.name)
         if block is not None:
             texts.extend(e.dxf.get("text", "") for e in block if e.dxftype() == "TEXT")

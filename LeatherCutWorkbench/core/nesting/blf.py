@@ -129,71 +129,9 @@ class Placer:
         k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
         return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
 
-    def _can_open(self, n: int) -> bool:
-        """May an (n+1)-th bin be opened?"""
-        if self.max_bins is not None:
-            return n < self.max_bins
-        return self.open_new or n < len(self.bin_specs)
-
-    # -------------------------------------------------------------- placement
-    def _new_bin(self, b: int) -> "BinState":
-        return BinState(placed=(), extent=self._spec(b).rect[0], free={})
-
-    def free_region(self, b: int, state: "BinState", vi: int) -> List[IntPath]:
-        """Translations of variant ``vi`` that fit bin ``b`` next to everything
-        placed so far.  Kept per variant and updated lazily: only the NFPs of
-        pieces placed since the last query are cut away (one clip operation)."""
-        hit = state.free.get(vi)
-        if hit is None:
-            region = [r for r in self._ifp(b, self.variants[vi], _OPEN_STRIP)
-                      if len(r) >= 3 and pyclipper.Area(r) != 0]
-            done = 0
-        else:
-            region, done = hit
-        n = len(state.placed)
-        if done < n and region:
-            clips = []
-            for (u, tx, ty) in state.placed[done:]:
-                paths, _ = self.nfps.get(u, vi)
-                off = np.array([tx, ty], dtype=np.int64)
-                clips.extend((p + off) for p in paths)
-            c = pyclipper.Pyclipper()
-            c.AddPaths(region, pyclipper.PT_SUBJECT, True)
-            c.AddPaths(clips, pyclipper.PT_CLIP, True)
-            region = c.Execute(pyclipper.CT_DIFFERENCE, _NZ, _NZ)
-        state.free[vi] = (region, n)
-        return region
-
-    def best_position(self, b: int, state: "BinState", vi: int) -> Optional[Tuple[int, int, int]]:
-        """Best (right edge, x, y) candidate of variant ``vi`` in bin ``b`` or None."""
-        free = self.free_region(b, state, vi)
-        if not free:
-            return None
-        v = self.variants[vi]
-        pts = np.array([q for p in free for q in p], dtype=np.int64)
-        right = pts[:, 0] + v.bbox[2]
-        crit = self.criterion
-        if crit == "right":
-            order = np.lexsort((pts[:, 0], pts[:, 1], right))
-        elif crit == "left":
-            order = np.lexsort((pts[:, 1], pts[:, 0] + v.bbox[0]))
-        else:  # "ref": the reference point's x, then y
-            order = np.lexsort((pts[:, 1], pts[:, 0]))
-        k = order[0]
-        if crit == "right":
-            return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
-        if crit == "left":
-            return int(pts[k, 0] + v.bbox[0]), int(pts[k, 1]), int(pts[k, 0]), int(pts[k, 1]), int(right[k])
-        return int(pts[k, 0]), int(pts[k, 1]), int(pts[k, 0]), int(pts[k, 1]), int(right[k])
-
-    def _can_open(self, n: int) -> bool:
-        """May an (n+1)-th bin be opened?"""
-        if self.max_bins is not None:
-            return n < self.max_bins
-        return self.open_new or n < len(self.bin_specs)
-
     def place(self, sequence: Sequence[Tuple[int, Optional[int]]],
-              prefix: Optional["Trace"] = None, keep: int = 0) -> "Trace":
+              prefix: Optional["Trace"] = None, keep: int = 0,
+              give_up: Optional[Tuple[float, Sequence[float]]] = None) -> Optional["Trace"]:
         """Place ``sequence`` (type index, forced variant or None) in order.
 
         With ``prefix`` (the trace of an earlier call) and ``keep`` = k, the first
@@ -207,6 +145,9 @@ class Placer:
         else:
             placements, states, bins = [], [], [self._new_bin(0)]
             states.append(tuple(bs.copy() for bs in bins))
+        left_out = 0.0
+        if give_up is not None:
+            left_out = sum(give_up[1][sequence[p[0]][0]] for p in placements if p[1] < 0)
         for si in range(len(placements), len(sequence)):
             t, forced = sequence[si]
             cands = [forced] if forced is not None else self.type_variants[t]
@@ -234,6 +175,10 @@ class Placer:
                 b += 1
             if not done:
                 placements.append((si, -1, -1, 0, 0))
+                if give_up is not None:
+                    left_out += give_up[1][t]
+                    if left_out > give_up[0] + 1e-9:
+                        return None
             states.append(tuple(bs.copy() for bs in bins))
         return Trace(placements, states)
 

@@ -13,9 +13,14 @@ position are recomputed (the prefix is reused), so late changes are cheap.
 A move is accepted when its cost is not worse than the current cost or than
 the cost ``history`` steps ago (late-acceptance hill climbing, Burke & Bykov):
 this walks over the long plateaus strip lengths have without getting stuck.
+A fill that already left out more than could be accepted is abandoned early.
 
-Each worker process runs its own search from its own seed (``seed + i``) and
-start order; the best result wins, ties going to the lowest worker index.
+Strips are searched by shrinking (:func:`run_strip_search`): the strip is
+closed a little shorter than the best layout and the order is searched until
+every piece fits again.
+
+Each worker process runs its own search with its own random stream (derived
+from the seed and the worker index i) and start order; the best result wins, ties going to the lowest worker index.
 With ``max_evaluations`` each worker stops after exactly that many layouts,
 so the result only depends on the seed and the worker count; with only a
 time budget it also depends on the machine's speed.
@@ -53,6 +58,8 @@ class Problem:
 
 
 def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements) -> Tuple[float, int, int]:
+    """(area left out, containers used, extent of the last container): lower is
+    better, compared in that order."""
     unplaced_area = 0.0
     last_bin = -1
     for (si, b, vi, tx, ty) in placements:
@@ -82,30 +89,38 @@ def start_orders(problem: Problem, copies: Sequence[int]) -> List[List[Gene]]:
 
 
 def _mutate(rng: random.Random, seq: List[Gene], problem: Problem) -> Tuple[List[Gene], int]:
+    """A random neighbour of ``seq`` that really differs (no swap of two copies
+    of the same part, no orientation change of a part with one orientation) and
+    the first position that changed."""
     n = len(seq)
     new = list(seq)
-    r = rng.random()
-    if n < 2 or r < 0.2:
-        i = rng.randrange(n)
-        t, cur = new[i]
-        opts: List[Optional[int]] = [None] + list(problem.type_variants[t])
-        if len(opts) <= 2:
-            opts = list(problem.type_variants[t]) + [None]
-        choice = rng.choice([o for o in opts if o != cur] or opts)
-        new[i] = (t, choice)
-        return new, i
-    if r < 0.6:
+    for _ in range(20):
+        r = rng.random()
+        if r < 0.2:
+            i = rng.randrange(n)
+            t, cur = new[i]
+            if len(problem.type_variants[t]) < 2:
+                continue
+            opts: List[Optional[int]] = [None] + list(problem.type_variants[t])
+            new[i] = (t, rng.choice([o for o in opts if o != cur]))
+            return new, i
+        if n < 2:
+            break
         i, j = sorted(rng.sample(range(n), 2))
-        if new[i][0] == new[j][0]:
-            j = rng.randrange(n)
-            i, j = min(i, j), max(i, j)
-        new[i], new[j] = new[j], new[i]
-        return new, i
-    i = rng.randrange(n)
-    j = rng.randrange(n)
-    g = new.pop(i)
-    new.insert(j, g)
-    return new, min(i, j)
+        if r < 0.6:
+            if new[i] == new[j]:
+                continue
+            new[i], new[j] = new[j], new[i]
+            return new, i
+        if rng.random() < 0.5:
+            i, j = j, i                       # move backwards or forwards
+        lo, hi = min(i, j), max(i, j)
+        if all(g == new[i] for g in new[lo:hi + 1]):
+            continue
+        g = new.pop(i)
+        new.insert(j, g)
+        return new, lo
+    return new, n
 
 
 def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
@@ -141,17 +156,20 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             from ..errors import CancelledError
             raise CancelledError("nesting cancelled")
         new_seq, first = _mutate(rng, cur_seq, problem)
-        new_pl = placer.place(new_seq, cur_pl, first)
-        evals += 1
-        c = cost_of(problem, new_seq, new_pl.placements)
-        h = hist[step % history]
-        if c <= cur_cost or c <= h:
-            cur_cost, cur_seq, cur_pl = c, new_seq, new_pl
-            if c < best[0]:
-                best = (c, new_seq, new_pl)
-        if cur_cost < h:
-            hist[step % history] = cur_cost
+        slot = step % history
+        h = hist[slot]
         step += 1
+        evals += 1
+        new_pl = placer.place(new_seq, cur_pl, first,
+                              give_up=(max(cur_cost[0], h[0]), problem.type_area))
+        if new_pl is not None:                # None: left out more than could be accepted
+            c = cost_of(problem, new_seq, new_pl.placements)
+            if c <= cur_cost or c <= h:
+                cur_cost, cur_seq, cur_pl = c, new_seq, new_pl
+                if c < best[0]:
+                    best = (c, new_seq, new_pl)
+        if cur_cost < h:
+            hist[slot] = cur_cost
     return best[0], best[1], best[2].placements, evals
 
 
@@ -165,7 +183,9 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
     out what does not fit, and the area left out is a much smoother guide than
     the strip length itself (which only one piece decides).  When all pieces
     fit, the layout is the new best and the target shrinks again; when the
-    search stalls, the shrink step halves (2 % down to 0.05 %)."""
+    search stalls, the shrink step halves (2 % down to 0.05 %); when even the
+    smallest step fails, the best order is kicked by a few random changes and
+    the cycle starts again (iterated local search)."""
     from .blf import BinSpec as _Bin
     deadline = time.monotonic() + time_budget
     rng = random.Random(seed * 1000003 + worker)
@@ -219,18 +239,21 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
                 first = j
             else:
                 new_seq, first = _mutate(rng, seq, problem)
-            new_pl = placer.place(new_seq, cur_pl, first)
-            evals += 1
-            c = cost_of(problem, new_seq, new_pl.placements)
-            h = hist[step % history]
-            stall += 1
-            if c < cur_cost:
-                stall = 0
-            if c <= cur_cost or c <= h:
-                seq, cur_pl, cur_cost = new_seq, new_pl, c
-            if cur_cost < h:
-                hist[step % history] = cur_cost
+            slot = step % history
+            h = hist[slot]
             step += 1
+            stall += 1
+            evals += 1
+            new_pl = placer.place(new_seq, cur_pl, first,
+                                  give_up=(max(cur_cost[0], h[0]), problem.type_area))
+            if new_pl is not None:            # None: left out more than could be accepted
+                c = cost_of(problem, new_seq, new_pl.placements)
+                if c < cur_cost:
+                    stall = 0
+                if c <= cur_cost or c <= h:
+                    seq, cur_pl, cur_cost = new_seq, new_pl, c
+            if cur_cost < h:
+                hist[slot] = cur_cost
         if cur_cost[0] == 0:
             best = (cur_cost, list(seq), cur_pl)
             best_len = cur_cost[2]
@@ -239,7 +262,11 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
             seq = list(best[1])
             step_frac /= 2.0
             if step_frac < min_frac:
-                step_frac = 0.02        # restart the cycle with big steps from the best
+                # every shrink step failed: kick the best order (a few random swaps)
+                # and start over with big steps -- an iterated local search
+                step_frac = 0.02
+                for _ in range(max(2, len(seq) // 8)):
+                    seq, _ = _mutate(rng, seq, problem)
     return best[0], best[1], best[2].placements, evals
 
 

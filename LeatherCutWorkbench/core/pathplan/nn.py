@@ -43,15 +43,12 @@ def nearest_neighbour(inst: Instance, rng: Optional[random.Random] = None,
             want = max(1, choose_among)
             k = 16
             while k <= 1024:
-                dd, ii = tree.query((inst.ex[g], inst.ey[g]), k=min(k, inst.n))
+                _, ii = tree.query((inst.ex[g], inst.ey[g]), k=min(k, inst.n))
                 ii = np.atleast_1d(ii)
-                ok = [int(j) for j in ii if j < inst.n and alive[j]]
-                seen, uniq = set(), []
-                for j in ok:
-                    it = int(item_of[j])
-                    if it not in seen:
-                        seen.add(it)
-                        uniq.append(j)
+                ii = ii[ii < inst.n]
+                ok = ii[alive[ii]]
+                _, first = np.unique(item_of[ok], return_index=True)
+                uniq = ok[np.sort(first)][:want].tolist()
                 if len(uniq) >= want or k >= inst.n:
                     if uniq:
                         nxt = uniq[rng.randrange(min(want, len(uniq)))] if (rng and want > 1) else uniq[0]

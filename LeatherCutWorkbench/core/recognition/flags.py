@@ -3,8 +3,9 @@
 *Under-recognised*: open chains whose free ends can be joined into a closed
 outline with bridges no longer than the gap tolerance (a missed end point, a
 missing short segment).  Free ends are paired with their mutual nearest free end
-(hash grid of gap-tolerance cells); a set of chains is proposed only when every
-one of its ends is bridged and the closed result encloses an area.
+(hash grid of gap-tolerance cells); a set of chains is proposed only when the
+bridges close a loop that encloses an area.  Also an open chain that stops
+short of a contour by at most the gap tolerance (a lead-in that misses).
 
 *Over-recognised*: text of the evidence collected on a contour (see
 :mod:`.arrangement` for cells; the enclosing-frame test is here).
@@ -152,6 +153,37 @@ def _path(adj: Dict[int, List[Tuple[int, int]]], src: int, dst: int) -> Optional
         out.append(e)
         n = p
     out.reverse()
+    return out
+
+
+def missed_contours(chain_list: Sequence[Chain], graph: Graph,
+                    gap_tol: float) -> List[GapProposal]:
+    """Open chains touching nothing whose one end stops at most ``gap_tol`` mm
+    short of a closed contour (a lead-in that misses): the bridge runs from that
+    end to the nearest contour point.  Chains near contours at both ends and
+    stubs no longer than the gap are left alone."""
+    out: List[GapProposal] = []
+    if gap_tol <= 0:
+        return out
+    closed = None
+    for ch in chain_list:
+        if ch.kind != "open" or ch.a < 0 or ch.length <= gap_tol:
+            continue
+        if graph.degree(ch.a) != 1 or graph.degree(ch.b) != 1:
+            continue
+        if closed is None:
+            closed = graph.closed_edges()
+        near_a = closed.nearest(ch.segs[0].start, gap_tol)
+        near_b = closed.nearest(ch.segs[-1].end, gap_tol)
+        if (near_a is None) == (near_b is None):
+            continue
+        if near_a is not None:
+            ch.reverse()
+            near_b = near_a
+        d, q = near_b
+        if d <= graph.tol:
+            continue
+        out.append(GapProposal([ch], [LineSeg(ch.segs[-1].end, q)]))
     return out
 
 

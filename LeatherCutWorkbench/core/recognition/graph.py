@@ -2,8 +2,9 @@
 
 Written by hand in pure Python on purpose: FreeCAD has no call that snaps end
 points within a tolerance *without* also merging neighbouring contours
-(``connectEdgesToWires`` swallows lead-ins at corners, ``sortEdges`` is greedy at
-junctions and 20x slower; see docs/notes).  A hash grid with cells of the join
+(``connectEdgesToWires`` swallows a lead-in touching a corner, ``sortEdges`` is
+greedy at junctions and took 6.6 s instead of 0.3 s for 10,000 edges on FreeCAD
+0.20.2).  A hash grid with cells of the join
 tolerance finds coincident end points in O(1) per point; degree counting and
 iterative peeling of degree-1 edges separate open chains (lead-ins, marks,
 unclosed outlines) from the closed part of the graph in linear time.
@@ -19,7 +20,9 @@ import math
 from collections import defaultdict
 from typing import Dict, List, Optional, Tuple
 
-from ..geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment
+from ..geometry import CurveSeg, LineSeg, Point, Segment
+from .segments import (SegmentIndex, line_cross, nearest_on, split_at_point, with_end,
+                       with_start)
 
 
 class Piece:
@@ -49,8 +52,17 @@ class NodeGrid:
         self.inv = 1.0 / tol
         self.cells: Dict[Tuple[int, int], List[int]] = {}
         self.pos: List[Point] = []
+        self.exact: Dict[Point, int] = {}
 
     def node(self, p: Point) -> int:
+        n = self.exact.get(p)
+        if n is not None:                  # most shared end points are bit-identical
+            return n
+        n = self._node(p)
+        self.exact[p] = n
+        return n
+
+    def _node(self, p: Point) -> int:
         x, y = p
         ix, iy = math.floor(x * self.inv), math.floor(y * self.inv)
         cells, pos, tol2 = self.cells, self.pos, self.tol2
@@ -92,8 +104,9 @@ class NodeGrid:
 class Graph:
     """Pieces, nodes and incidence of one drawing (or one pattern piece)."""
 
-    def __init__(self, pieces: List[Piece], tol: float):
+    def __init__(self, pieces: List[Piece], tol: float, chord_tol: float = 0.0):
         self.tol = tol
+        self.chord_tol = chord_tol          # flattened curves deviate this much
         self.grid = NodeGrid(tol)
         self.pieces: List[Piece] = []
         self.adj: Dict[int, List[int]] = defaultdict(list)
@@ -144,7 +157,7 @@ class Graph:
         dangling = nodes
         if not dangling:
             return 0, 0
-        index = _SegmentIndex(self.pieces, self.tol)
+        index = SegmentIndex(self.pieces, self.tol)
         t_count = o_count = 0
         for n in dangling:
             if not self.adj[n]:
@@ -158,14 +171,15 @@ class Graph:
                 pc = self.pieces[j]
                 if pc.n0 == n or pc.n1 == n:
                     continue
-                split = _split_at_point(pc.seg, p, self.tol)
+                extra = self.chord_tol if type(pc.seg) is CurveSeg else 0.0
+                split = split_at_point(pc.seg, p, self.tol + extra)
                 if split is not None:
                     hit = (j, split)
                     break
             if hit is not None:
                 j, split = hit
                 # pin the split point to the dangling node so both meet exactly
-                split = [_with_end(split[0], p), _with_start(split[1], p)]
+                split = [with_end(split[0], p), with_start(split[1], p)]
                 self.replace(j, split)
                 index.update(self.pieces, j)
                 t_count += 1
@@ -183,7 +197,7 @@ class Graph:
                     index.update(self.pieces, k)
         return t_count, o_count
 
-    def _overshoot(self, own: int, n: int, index: "_SegmentIndex",
+    def _overshoot(self, own: int, n: int, index: "SegmentIndex",
                    gap_tol: float) -> Optional[Tuple[int, Point]]:
         seg = self.pieces[own].seg
         free = self.pos[n]
@@ -194,7 +208,7 @@ class Graph:
             other = self.pieces[j].seg
             if not isinstance(other, LineSeg):
                 continue
-            x = _line_cross(seg, other, self.tol)
+            x = line_cross(seg, other, self.tol)
             if x is None:
                 continue
             d = math.hypot(x[0] - free[0], x[1] - free[1])
@@ -203,6 +217,10 @@ class Graph:
         return None if best is None else (best[1], best[2])
 
     # ------------------------------------------------------------------
+    def closed_edges(self) -> "ClosedEdges":
+        """Index of the unpeeled edges (closed contours) for nearest-point queries."""
+        return ClosedEdges([pc for pc in self.pieces if not pc.peeled], self.tol)
+
     def chain_interior_nodes(self) -> List[int]:
         """Degree-2 nodes whose both edges were peeled (inside open chains)."""
         out = []
@@ -289,161 +307,22 @@ class Graph:
         return out
 
 
-def oriented(seg: Segment, forward: bool) -> Segment:
-    return seg if forward else seg.reversed()
-
-
-# ----------------------------------------------------------------------
-# Geometry helpers (pure Python: exact for lines and arcs)
-# ----------------------------------------------------------------------
-
-class _SegmentIndex:
-    """Uniform grid over segment bounding boxes (cell about the median size);
-    boxes are kept as tuples so a point query filters without geometry."""
+class ClosedEdges:
+    """Nearest point on the closed part of the graph (after peeling)."""
 
     def __init__(self, pieces: List[Piece], tol: float):
-        self.tol = tol
-        self.boxes: List[Tuple[float, float, float, float]] = [_seg_bbox(p.seg) for p in pieces]
-        step = max(1, len(self.boxes) // 1000)
-        sizes = sorted(max(b[2] - b[0], b[3] - b[1]) for b in self.boxes[::step])
-        med = sizes[len(sizes) // 2] if sizes else 1.0
-        self.cell = max(med, 10 * tol, 1e-6)
-        self.cells: Dict[Tuple[int, int], List[int]] = defaultdict(list)
-        for i in range(len(self.boxes)):
-            self._insert(i)
-        self._indexed = len(pieces)
+        self.pieces = pieces
+        self.grid = SegmentIndex(pieces, tol)
 
-    def _insert(self, i: int) -> None:
-        x0, y0, x1, y1 = self.boxes[i]
-        t, c = self.tol, self.cell
-        ix0, ix1 = math.floor((x0 - t) / c), math.floor((x1 + t) / c)
-        iy0, iy1 = math.floor((y0 - t) / c), math.floor((y1 + t) / c)
-        cells = self.cells
-        if ix0 == ix1 and iy0 == iy1:
-            cells[(ix0, iy0)].append(i)
-            return
-        for ix in range(ix0, ix1 + 1):
-            for iy in range(iy0, iy1 + 1):
-                cells[(ix, iy)].append(i)
-
-    def update(self, pieces: List[Piece], i: int) -> None:
-        """Piece ``i`` was replaced by its first part and the rest appended.
-        Stale entries of ``i`` stay (callers re-test geometry anyway)."""
-        self.boxes[i] = _seg_bbox(pieces[i].seg)
-        self._insert(i)
-        for k in range(self._indexed, len(pieces)):
-            self.boxes.append(_seg_bbox(pieces[k].seg))
-            self._insert(k)
-        self._indexed = len(pieces)
-
-    def near(self, p: Point, radius: float = 0.0) -> List[int]:
-        """Pieces whose box (grown by the tolerance + ``radius``) holds ``p``."""
-        c = self.cell
-        x, y = p
-        r = self.tol + radius
-        out = []
-        boxes = self.boxes
-        if radius <= 0:
-            keys = [(math.floor(x / c), math.floor(y / c))]
-        else:
-            keys = [(ix, iy) for ix in range(math.floor((x - r) / c), math.floor((x + r) / c) + 1)
-                    for iy in range(math.floor((y - r) / c), math.floor((y + r) / c) + 1)]
-        for key in keys:
-            for j in self.cells.get(key, ()):
-                b = boxes[j]
-                if b[0] - r <= x <= b[2] + r and b[1] - r <= y <= b[3] + r:
-                    out.append(j)
-        return out
+    def nearest(self, p: Point, radius: float) -> Optional[Tuple[float, Point]]:
+        """(distance, point) of the nearest contour point within ``radius`` mm."""
+        best = None
+        for j in set(self.grid.near(p, radius)):
+            d, q = nearest_on(self.pieces[j].seg, p)
+            if d <= radius and (best is None or d < best[0]):
+                best = (d, q)
+        return best
 
 
-def _seg_bbox(seg: Segment) -> Tuple[float, float, float, float]:
-    if isinstance(seg, LineSeg):
-        (ax, ay), (bx, by) = seg.start, seg.end
-        return (min(ax, bx), min(ay, by), max(ax, bx), max(ay, by))
-    if isinstance(seg, ArcSeg):
-        cx, cy = seg.center
-        r = seg.radius
-        return (cx - r, cy - r, cx + r, cy + r)
-    xs = [p[0] for p in seg.pts]
-    ys = [p[1] for p in seg.pts]
-    return (min(xs), min(ys), max(xs), max(ys))
-
-
-def _with_end(seg: Segment, p: Point) -> Segment:
-    if isinstance(seg, LineSeg):
-        return LineSeg(seg.start, p)
-    if isinstance(seg, CurveSeg):
-        return CurveSeg(seg.pts[:-1] + (p,), seg.kind)
-    return seg
-
-
-def _with_start(seg: Segment, p: Point) -> Segment:
-    if isinstance(seg, LineSeg):
-        return LineSeg(p, seg.end)
-    if isinstance(seg, CurveSeg):
-        return CurveSeg((p,) + seg.pts[1:], seg.kind)
-    return seg
-
-
-def _split_at_point(seg: Segment, p: Point, tol: float) -> Optional[List[Segment]]:
-    """Two pieces of ``seg`` split where ``p`` lies on its interior (within
-    ``tol`` mm, and farther than ``tol`` from both ends), else None."""
-    x, y = p
-    if isinstance(seg, LineSeg):
-        (ax, ay), (bx, by) = seg.start, seg.end
-        dx, dy = bx - ax, by - ay
-        n2 = dx * dx + dy * dy
-        if n2 <= 0:
-            return None
-        t = ((x - ax) * dx + (y - ay) * dy) / n2
-        n = math.sqrt(n2)
-        if t * n <= tol or (1 - t) * n <= tol:
-            return None
-        if abs((x - ax) * dy - (y - ay) * dx) / n > tol:
-            return None
-        q = (ax + t * dx, ay + t * dy)
-        return [LineSeg(seg.start, q), LineSeg(q, seg.end)]
-    if isinstance(seg, ArcSeg):
-        cx, cy = seg.center
-        if abs(math.hypot(x - cx, y - cy) - seg.radius) > tol:
-            return None
-        ang = math.degrees(math.atan2(y - cy, x - cx))
-        rel = (ang - seg.start_angle) % 360.0 if seg.sweep > 0 else (seg.start_angle - ang) % 360.0
-        s = math.radians(rel) * seg.radius
-        if s <= tol or seg.length - s <= tol:
-            return None
-        a, b = seg.split_at(s)
-        return [a, b]
-    best = None
-    pts = seg.pts
-    acc = 0.0
-    for i in range(len(pts) - 1):
-        (ax, ay), (bx, by) = pts[i], pts[i + 1]
-        dx, dy = bx - ax, by - ay
-        n2 = dx * dx + dy * dy
-        n = math.sqrt(n2)
-        t = 0.0 if n2 == 0 else min(1.0, max(0.0, ((x - ax) * dx + (y - ay) * dy) / n2))
-        d = math.hypot(ax + t * dx - x, ay + t * dy - y)
-        if d <= tol and (best is None or d < best[0]):
-            best = (d, acc + t * n)
-        acc += n
-    if best is None or best[1] <= tol or acc - best[1] <= tol:
-        return None
-    a, b = seg.split_at(best[1])
-    return [a, b]
-
-
-def _line_cross(a: LineSeg, b: LineSeg, tol: float) -> Optional[Point]:
-    """Proper crossing point of two lines (interior of both, not at an end)."""
-    (x1, y1), (x2, y2) = a.start, a.end
-    (x3, y3), (x4, y4) = b.start, b.end
-    d = (x2 - x1) * (y4 - y3) - (y2 - y1) * (x4 - x3)
-    la = math.hypot(x2 - x1, y2 - y1)
-    lb = math.hypot(x4 - x3, y4 - y3)
-    if la == 0 or lb == 0 or abs(d) <= 1e-12 * la * lb:
-        return None
-    t = ((x3 - x1) * (y4 - y3) - (y3 - y1) * (x4 - x3)) / d
-    u = ((x3 - x1) * (y2 - y1) - (y3 - y1) * (x2 - x1)) / d
-    if t * la <= tol or (1 - t) * la <= tol or u * lb <= tol or (1 - u) * lb <= tol:
-        return None
-    return (x1 + t * (x2 - x1), y1 + t * (y2 - y1))
+def oriented(seg: Segment, forward: bool) -> Segment:
+    return seg if forward else seg.reversed()

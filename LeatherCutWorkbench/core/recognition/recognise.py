@@ -27,8 +27,8 @@ from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, P
                      Recognition)
 from ..progress import ProgressFn, report
 from .arrangement import arrange
-from .flags import GapProposal, frame_evidence, gap_proposals
-from .from_part import orient
+from .flags import GapProposal, frame_evidence, gap_proposals, missed_contours
+from .from_part import reverse
 from .graph import Graph, Piece
 from .leadins import Chain, assign_lead_outs, chains, classify
 from .loops import Loop, edge_key, mark_shared, outline_problems, simple_loop
@@ -61,7 +61,8 @@ class _Group:
         self.loops: List[Loop] = []
         self.chains: List[Chain] = []
         self.gaps: List[GapProposal] = []
-        self.closed_gaps: List[Tuple[GapProposal, List[int]]] = []
+        self.misses: List[GapProposal] = []
+        self.closed_gaps: List[GapProposal] = []
         self.graph: Optional[Graph] = None
         self.has_grain = False
 
@@ -158,7 +159,7 @@ def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
         findings.append(Finding("info", "duplicate-edges-dropped",
                                 f"{dups} duplicated cut edges dropped", where))
     step(0.2, "joining end points")
-    graph = Graph(pieces, tol)
+    graph = Graph(pieces, tol, options.chord_tol)
     grp.graph = graph
     graph.split_at_dangling_ends(options.gap_tol)
     graph.peel()
@@ -171,12 +172,15 @@ def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
     for gp in grp.gaps:
         for ch in gp.chains:
             ch.kind = "gap"
-    if options.close_gaps and grp.gaps:
-        for k, gp in enumerate(grp.gaps):
-            new = []
+    grp.misses = missed_contours(chain_list, graph, options.gap_tol)
+    for gp in grp.misses:
+        gp.chains[0].kind = "gap"
+    if options.close_gaps and (grp.gaps or grp.misses):
+        for k, gp in enumerate(grp.gaps + grp.misses):
             for b in gp.bridges:
-                new.append(graph.add(Piece(-1 - k, b)))
-            grp.closed_gaps.append((gp, new))
+                graph.add(Piece(-1 - k, b))       # bridges carry source -1 - k
+            grp.closed_gaps.append(gp)
+        graph.split_at_dangling_ends(0.0)          # a bridge may end on an edge
         graph.peel()
         chain_list = chains(graph)
     grp.chains = chain_list
@@ -203,24 +207,7 @@ def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
                 grp.chains.append(Chain([pc.seg], -1, -1, [pc.src]))
             continue
         cluster += 1
-        for c in cells:
-            lp = c.loop
-            ev = []
-            if not c.drawn and any(cells[j].drawn for j in c.neighbours):
-                ev.append("none of its sides was drawn for it (each is part of a longer line or of another outline) while the regions around it were drawn as their own outlines")
-            width = 2.0 * lp.area / max(lp_length(lp), 1e-12)
-            if width < options.gap_tol:
-                ev.append(f"a sliver {width:.3g} mm wide on average between nearly coincident "
-                          "lines")
-            if c.pinwheel:
-                ev.append("every edge is shared and each corner is a T-junction turning off a "
-                          "line of a neighbouring part (the gap left between parts around it)")
-            if ev:
-                lp.auto_over = True
-                if c.all_shared:
-                    ev.append("every edge is shared with a neighbouring part")
-            lp.evidence = ev
-            grp.loops.append(lp)
+        grp.loops.extend(_with_evidence(cells, options.gap_tol))
         for seg in leftovers:
             ch = Chain([seg], -1, -1, [])
             grp.chains.append(ch)
@@ -228,28 +215,61 @@ def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
         real = [s for s in lp.srcs if s >= 0]
         lp.order = (min(real) if real else 1 << 60, lp.bbox[1], lp.bbox[0])
     grp.loops.sort(key=lambda lp: lp.order)
-    _drop_duplicate_loops(grp, tol, findings, where)
     for lp in grp.loops:
         lp.chord_tol = options.chord_tol
+    _drop_duplicate_loops(grp, tol, findings, where)
     grp.crossing, grp.overlapping = outline_problems(grp.loops)
 
 
-def lp_length(lp: Loop) -> float:
-    return sum(s.length for s in lp.segs)
+def _with_evidence(cells, gap_tol: float) -> List[Loop]:
+    """Loops of arrangement cells with their over-recognition evidence set."""
+    out = []
+    for c in cells:
+        lp = c.loop
+        ev = []
+        if not c.drawn and any(cells[j].drawn for j in c.neighbours):
+            ev.append("none of its sides was drawn for it (each is part of a longer line or "
+                      "of another outline) while the regions around it were drawn as their "
+                      "own outlines")
+        width = 2.0 * lp.area / max(lp.length, 1e-12)
+        if width < gap_tol:
+            ev.append(f"a sliver {width:.3g} mm wide on average between nearly coincident lines")
+        if c.pinwheel:
+            ev.append("every edge is shared and each corner is a T-junction turning off a "
+                      "line of a neighbouring part (the gap left between parts around it)")
+        if ev:
+            lp.auto_over = True
+            if c.all_shared:
+                ev.append("every edge is shared with a neighbouring part")
+        lp.evidence = ev
+        out.append(lp)
+    return out
 
 
 def _drop_duplicate_loops(grp: _Group, tol: float, findings: List[Finding], where: str) -> None:
-    """Closed outlines drawn twice (not edge by edge identical) are kept once."""
-    seen: Dict[Tuple, Loop] = {}
-    keep = []
+    """Closed outlines drawn twice (not edge by edge identical) are kept once:
+    same box, and no point of one farther than 10 x join tolerance from the
+    other (shapely's Hausdorff distance on the flattened outlines)."""
+    import shapely
+
     q = max(tol * 10, 1e-6)
+    buckets: Dict[Tuple, List[Loop]] = defaultdict(list)
+    keep = []
     for lp in grp.loops:
-        k = tuple(round(v / q) for v in lp.bbox) + (round(lp.area / max(q, lp.area * 1e-4)),)
-        if k in seen and lp.cluster is None:
+        k = tuple(round(v / q) for v in lp.bbox)
+        twin = None
+        if lp.cluster is None and buckets.get(k):
+            here = shapely.LineString(lp.polygon() + lp.polygon()[:1])
+            for other in buckets[k]:
+                there = shapely.LineString(other.polygon() + other.polygon()[:1])
+                if shapely.hausdorff_distance(here, there) <= q:
+                    twin = other
+                    break
+        if twin is not None:
             findings.append(Finding("info", "duplicate-contour",
                                     "a closed outline drawn twice was kept once", where))
             continue
-        seen[k] = lp
+        buckets[k].append(lp)
         keep.append(lp)
     grp.loops = keep
 
@@ -258,21 +278,39 @@ def _drop_duplicate_loops(grp: _Group, tol: float, findings: List[Finding], wher
 def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
           rec: Recognition) -> None:
     """Steps 5-7 for one group, appending to ``rec``."""
-    tol = options.join_tol
     loops = grp.loops
     for lp in loops:
         lp.contour_id = ids.next("C")
+    _outline_findings(grp, rec, drawing.path)
+    par, depth = _decide(loops, options)
+    layer = _layer_of(drawing)
+    part_of_loop = _make_parts(drawing, grp, options, ids, rec, par, depth, layer)
+    node_loops = _attach_chains(grp, options, ids, rec, part_of_loop, layer)
+    _under_flags(grp, options, ids, rec, node_loops)
+    _place_marks(drawing, grp, loops, part_of_loop, depth, options.join_tol, rec)
+    line = getattr(grp.info, "mirror_line", None) if grp.info is not None else None
+    if line is not None:
+        _unfold(grp, line, part_of_loop, depth, options, ids, rec, drawing.path)
+    rec.parts.extend(sorted({id(p): p for p in part_of_loop.values()}.values(),
+                            key=lambda p: _num(p.id)))
 
+
+def _outline_findings(grp: _Group, rec: Recognition, path: str) -> None:
     for lp, why in grp.crossing:
         rec.findings.append(Finding("warning", "self-intersecting-contour",
                                     f"contour {lp.contour_id} crosses itself ({why}); it is cut "
-                                    "as drawn", drawing.path))
+                                    "as drawn", path))
     for a, b in grp.overlapping:
         rec.findings.append(Finding("warning", "crossing-contours",
                                     f"contours {a.contour_id} and {b.contour_id} cross each "
-                                    "other: the parts overlap", drawing.path))
+                                    "other: the parts overlap", path))
 
-    # frame / group outline evidence needs the containment tree
+
+def _decide(loops: List[Loop], options: RecogniseOptions):
+    """Frame evidence, exclusions (automatic, then a person's), containment of
+    the active loops, depth, orientation (outers CCW, holes CW), shared edges.
+    Returns (parent index per loop, depth per loop)."""
+    tol = options.join_tol
     par = parents(loops, tol)
     children: Dict[int, List[int]] = defaultdict(list)
     for i, p in enumerate(par):
@@ -284,45 +322,40 @@ def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
         if why:
             lp.auto_over = True
             lp.evidence.append(why)
-
     changed = False
     for lp in loops:
         cid = lp.contour_id
-        lp.excluded = lp.auto_over
-        if cid in options.include:
-            lp.excluded = False
-        if cid in options.exclude:
-            lp.excluded = True
+        lp.excluded = (lp.auto_over and cid not in options.include) or cid in options.exclude
         changed |= lp.excluded
-    active = [i for i, lp in enumerate(loops) if not lp.excluded]
     if changed:
-        sub = [loops[i] for i in active]
-        sub_par = parents(sub, tol)
+        active = [i for i, lp in enumerate(loops) if not lp.excluded]
+        sub_par = parents([loops[i] for i in active], tol)
         par = [None] * len(loops)
         for k, i in enumerate(active):
             par[i] = None if sub_par[k] is None else active[sub_par[k]]
     depth = depths(par, loops)
-
-    # orientation: outers CCW, holes CW
     for i, lp in enumerate(loops):
         ccw = lp.excluded or depth[i] % 2 == 0
-        lp.segs = orient(lp.segs, ccw)
+        if (lp.signed_area > 0) != ccw:
+            lp.segs = reverse(lp.segs)
+            lp.signed_area = -lp.signed_area
     mark_shared(loops, max(tol, 1e-6))
+    return par, depth
 
-    layer = _layer_of(drawing)
-    contour_of: Dict[int, Contour] = {}
-    for i, lp in enumerate(loops):
-        contour_of[i] = Contour(lp.contour_id, lp.segs, layer(lp.srcs), list(lp.shared_idx))
 
-    # over flags
+def _make_parts(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
+                rec: Recognition, par, depth, layer) -> Dict[int, Part]:
+    """Over flags, then one part per even-depth (or excluded) loop with the
+    odd-depth loops inside it as holes.  Returns loop index -> its part."""
+    loops = grp.loops
+    decided = options.include | options.exclude
     for lp in loops:
         if lp.evidence:
-            decided = (None if lp.contour_id not in options.include | options.exclude
-                       else lp.contour_id in options.exclude)
+            accepted = None if lp.contour_id not in decided else lp.contour_id in options.exclude
             rec.flags.append(Flag(ids.next("F"), "over", [lp.contour_id],
-                                  "; ".join(lp.evidence), accepted=decided))
-
-    # parts
+                                  "; ".join(lp.evidence), accepted=accepted, action="exclude"))
+    contour_of = {i: Contour(lp.contour_id, lp.segs, layer(lp.srcs), list(lp.shared_idx))
+                  for i, lp in enumerate(loops)}
     part_of_loop: Dict[int, Part] = {}
     order = sorted(range(len(loops)), key=lambda i: _num(loops[i].contour_id))
     for i in order:
@@ -340,14 +373,19 @@ def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
         p = par[i]
         if part.outer is contour_of[i] and p is not None and depth[i] > 0:
             part.parent_id = part_of_loop[p].id
+    return part_of_loop
 
-    # chains: lead-ins, lead-outs, open chains
+
+def _attach_chains(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
+                   part_of_loop: Dict[int, Part], layer) -> Dict[int, List[int]]:
+    """Lead-ins / lead-outs onto their parts, the other chains to open chains.
+    Returns graph node -> loops through it (active loops first)."""
+    loops = grp.loops
     node_loops: Dict[int, List[int]] = defaultdict(list)
     for i in sorted(range(len(loops)), key=lambda i: loops[i].excluded):
         for n in loops[i].nodes:
             node_loops[n].append(i)
-    graph = grp.graph
-    classify(grp.chains, graph, node_loops, options.gap_tol, loops)
+    classify(grp.chains, grp.graph, node_loops, options.gap_tol, loops)
     by_loop: Dict[int, List[Chain]] = defaultdict(list)
     for ch in grp.chains:
         if ch.kind == "lead_in":
@@ -356,48 +394,52 @@ def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
     for li, chs in sorted(by_loop.items(), key=lambda t: _num(loops[t[0]].contour_id)):
         part = part_of_loop[li]
         for ch in sorted(chs, key=lambda c: min(c.srcs) if c.srcs else 0):
-            part.lead_ins.append(LeadIn(ids.next("L"), loops[li].contour_id, ch.segs, ch.kind))
+            ch.id = ids.next("L")
+            part.lead_ins.append(LeadIn(ch.id, loops[li].contour_id, ch.segs, ch.kind))
     opens = [ch for ch in grp.chains if ch.kind in ("open", "overshoot", "gap")]
     opens.sort(key=lambda c: (min(c.srcs) if c.srcs else 1 << 60))
     for ch in opens:
         if ch.kind == "overshoot" and options.close_gaps:
-            continue
+            continue                                  # trimmed
         ch.id = ids.next("O")
         rec.open_chains.append(OpenChain(ch.id, ch.segs, layer(ch.srcs)))
+    return node_loops
 
-    # under flags
-    for gp in grp.gaps:
-        if options.close_gaps:
-            continue
-        reason = (f"open outline of {len(gp.chains)} chain(s) closes with "
-                  f"{len(gp.bridges)} bridging segment(s), largest gap {gp.gap:.4g} mm "
-                  f"(gap tolerance {options.gap_tol} mm)")
-        rec.flags.append(Flag(ids.next("F"), "under", sorted((c.id for c in gp.chains), key=_num),
-                              reason,
-                              gap=gp.gap, fix=list(gp.bridges)))
-    for k, (gp, _) in enumerate(grp.closed_gaps):
+
+def _under_flags(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
+                 node_loops: Dict[int, List[int]]) -> None:
+    """Flags for gaps, chains missing a contour and stubs (accepted when closed)."""
+    loops = grp.loops
+    if not options.close_gaps:
+        for gp in grp.gaps:
+            reason = (f"open outline of {len(gp.chains)} chain(s) closes with "
+                      f"{len(gp.bridges)} bridging segment(s), largest gap {gp.gap:.4g} mm "
+                      f"(gap tolerance {options.gap_tol} mm)")
+            rec.flags.append(Flag(ids.next("F"), "under",
+                                  sorted((c.id for c in gp.chains), key=_num), reason,
+                                  gap=gp.gap, fix=list(gp.bridges)))
+        for gp in grp.misses:
+            reason = (f"open chain ends {gp.gap:.4g} mm short of a contour (a lead-in that "
+                      "misses it?); the bridge joins it to the nearest contour point")
+            rec.flags.append(Flag(ids.next("F"), "under", [gp.chains[0].id], reason,
+                                  gap=gp.gap, fix=list(gp.bridges), action="join"))
+    for k, gp in enumerate(grp.closed_gaps):
         made = [loops[i].contour_id for i in range(len(loops)) if (-1 - k) in loops[i].srcs]
+        made += [ch.id for ch in grp.chains if (-1 - k) in ch.srcs and ch.id]
         reason = (f"gap of {gp.gap:.4g} mm closed with {len(gp.bridges)} bridging segment(s) "
                   f"(--close-gaps)")
         rec.flags.append(Flag(ids.next("F"), "under", made, reason, gap=gp.gap,
-                              fix=list(gp.bridges), accepted=True))
+                              fix=list(gp.bridges), accepted=True,
+                              action="join" if gp in grp.misses else "close"))
     for ch in sorted(grp.chains, key=lambda c: (c.id == "", _num(c.id) if c.id else 0)):
         if ch.kind != "overshoot":
             continue
         cont = [loops[i].contour_id for i in node_loops.get(ch.b, [])][:1]
         reason = (f"{ch.length:.4g} mm stub hangs off the contour (a line running past a corner "
-                  f"or a drawing artefact, no longer than the gap tolerance); fix: trim it")
+                  "or a drawing artefact, no longer than the gap tolerance); fix: trim it")
         rec.flags.append(Flag(ids.next("F"), "under", cont if options.close_gaps else [ch.id],
-                              reason, gap=ch.length, fix=[],
+                              reason, gap=ch.length, fix=[], action="trim",
                               accepted=True if options.close_gaps else None))
-
-    # marks
-    _place_marks(drawing, grp, loops, part_of_loop, depth, tol, rec)
-    line = getattr(grp.info, "mirror_line", None) if grp.info is not None else None
-    if line is not None:
-        _unfold(grp, line, part_of_loop, depth, options, ids, rec, drawing.path)
-    rec.parts.extend(sorted({id(p): p for p in part_of_loop.values()}.values(),
-                            key=lambda p: _num(p.id)))
 
 
 def _unfold(grp: _Group, line, part_of_loop: Dict[int, Part], depth: List[int],

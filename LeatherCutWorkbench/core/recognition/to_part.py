@@ -124,8 +124,9 @@ def segment_edges(seg: Segment, a: Point, b: Point,
     (graph node positions, within the join tolerance of the segment ends).
 
     Lines and arcs are rebuilt through the node positions so consecutive edges
-    share exact vertices; a free-form curve keeps its FreeCAD curve when it has
-    one, otherwise its flattened polyline is used."""
+    share exact vertices; a free-form curve keeps its FreeCAD curve when that
+    already ends at the nodes, otherwise its flattened polyline (pinned to the
+    nodes) is used."""
     if isinstance(seg, LineSeg):
         return [Part.LineSegment(V(a[0], a[1], 0), V(b[0], b[1], 0)).toShape()]
     if isinstance(seg, ArcSeg):
@@ -133,8 +134,16 @@ def segment_edges(seg: Segment, a: Point, b: Point,
             return [Part.makeCircle(seg.radius, V(seg.center[0], seg.center[1], 0))]
         m = seg.point_at(seg.length / 2)
         return [Part.Arc(V(a[0], a[1], 0), V(m[0], m[1], 0), V(b[0], b[1], 0)).toShape()]
-    if curve is not None:
+    if curve is not None and _ends_at(curve, a, b):
         return [curve]
     pts = list(seg.points())
     pts[0], pts[-1] = a, b
     return list(Part.makePolygon([V(x, y, 0) for x, y in pts]).Edges)
+
+
+def _ends_at(edge: "Part.Edge", a: Point, b: Point, tol: float = 1e-7) -> bool:
+    """True if ``edge`` runs between ``a`` and ``b`` (either way) within ``tol`` mm."""
+    p = edge.valueAt(edge.FirstParameter)
+    q = edge.valueAt(edge.LastParameter)
+    d = lambda u, v: math.hypot(u.x - v[0], u.y - v[1])  # noqa: E731
+    return (d(p, a) <= tol and d(q, b) <= tol) or (d(p, b) <= tol and d(q, a) <= tol)

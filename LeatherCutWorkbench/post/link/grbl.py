@@ -121,6 +121,7 @@ class GrblLink:
         self._wco: Optional[List[float]] = None
         self.stop_position: Optional[Dict[str, float]] = None
         self.stop_position_trusted = False
+        self.profile_up_lines: List[str] = []       # knife up after a safe stop
 
     # ----------------------------------------------------------- connection
     def open(self) -> "GrblLink":
@@ -557,8 +558,6 @@ class GrblLink:
         except LinkError:
             return False
 
-    #: knife-up lines sent after a safe stop (set by the caller from the profile)
-    profile_up_lines: List[str] = []
-
     def use_profile(self, profile: MachineProfile) -> None:
+        """Lift the knife with this profile's lines after a safe stop."""
         self.profile_up_lines = knife_up_lines(profile)

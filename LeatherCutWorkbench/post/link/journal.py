@@ -52,7 +52,10 @@ class Journal:
     def __init__(self, path: str, fsync_interval: float = 0.2):
         self.path = path
         self.fsync_interval = fsync_interval
-        self._fh = open(path, "a", encoding="utf-8")
+        try:
+            self._fh = open(path, "a", encoding="utf-8")
+        except OSError as exc:
+            raise InputError(f"cannot write the job journal: {exc.strerror}", source=path)
         self._last_sync = time.monotonic()
 
     @classmethod
@@ -154,10 +157,6 @@ class JournalState:
         """Segments whose every line the machine executed (in job order)."""
         return self._segments_with(self.executed())
 
-    def acked_segments(self) -> List[str]:
-        """Segments whose every line was acknowledged (may exceed what was cut)."""
-        return self._segments_with(self.acked_set)
-
     def first_incomplete(self) -> Optional[str]:
         """The suggested resume point: the first segment not completely executed
         (None when every segment is)."""
@@ -174,17 +173,6 @@ class JournalState:
             return []
         k = self.segments.index(first)
         return [s for s in self.done_segments() if self.segments.index(s) > k and s != seg]
-
-    def finished(self) -> bool:
-        return any(e.get("e") == "done" for e in self.events[-1:])
-
-    def summary(self) -> Dict:
-        return {"journal": self.path, "job": self.job, "lines": self.lines,
-                "acked_lines": len(self.acked_set), "executed_lines": len(self.executed()),
-                "basis": self.bases, "segments": len(self.segments),
-                "done_segments": len(self.done_segments()),
-                "resume_from": self.first_incomplete(),
-                "last_event": self.events[-1] if self.events else None}
 
 
 def load_journal(path: str) -> JournalState:

@@ -36,18 +36,27 @@ SYNC_LINE = re.compile(r"^(N\d+)?(G4P|M[345789](?!\d))")
 STOP_EVENTS = ("error", "alarm", "reset", "stalled", "lost", "aborted", "check-failed")
 
 
-def trace_lines(source: Sequence[str], axes: str, wrapped: str, turn: float
-                ) -> Dict[int, List[TraceMove]]:
-    """Motion moves of every line (0-based index) of a program."""
+def trace_run(source: Sequence[str], acked: Set[int], axes: str, wrapped: str, turn: float
+              ) -> Dict[int, List[TraceMove]]:
+    """Motion moves of the acknowledged lines of one run (0-based index).
+
+    Lines before the run's first acknowledged line are taken as executed (an
+    earlier run or the resume preamble brought the machine there); after it
+    only acknowledged lines are executed -- a line the controller refused
+    changed nothing, so the axis values and modal state of later lines are
+    traced as the machine really had them."""
     it = Interpreter(axes, wrapped, turn)
+    first = min(acked) if acked else len(source)
     out: Dict[int, List[TraceMove]] = {}
     for i, line in enumerate(source):
+        if i >= first and i not in acked:
+            continue
         try:
             moves = it.execute(line, i + 1)
         except GcodeError:
             continue                    # the controller refused it too: never executed
         motion = [m for m in moves if m.kind in ("rapid", "line", "arc")]
-        if motion:
+        if motion and i >= first:
             out[i] = motion
     return out
 
@@ -97,7 +106,7 @@ def locate(move: TraceMove, pos: Dict[str, float], tol: Dict[str, float]) -> Opt
     return t
 
 
-def executed_in_run(run: Dict, motion: Dict[int, List[TraceMove]], source: Sequence[str],
+def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, turn: float,
                     tol: Dict[str, float]) -> Tuple[Set[int], str]:
     """(executed line indices, basis) of one run; see the module docstring."""
     acked: List[int] = run["acked"]
@@ -109,8 +118,9 @@ def executed_in_run(run: Dict, motion: Dict[int, List[TraceMove]], source: Seque
     last_sync = max(syncs) if syncs else -1
     pos = end.get("position") if end else None
     if pos and end.get("position_trusted"):
-        for i in sorted(acked_set):
-            if i <= last_sync or i not in motion:
+        motion = trace_run(source, acked_set, axes, wrapped, turn)
+        for i in sorted(motion):
+            if i <= last_sync:
                 continue
             for k, mv in enumerate(motion[i]):
                 t = locate(mv, pos, tol)
@@ -125,12 +135,11 @@ def executed_in_run(run: Dict, motion: Dict[int, List[TraceMove]], source: Seque
 def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapped: str,
                    turn: float, rotary: str) -> Tuple[Set[int], List[str]]:
     """Union of the executed lines of every run, and the basis of each run."""
-    motion = trace_lines(source, axes, wrapped, turn)
     tol = _tolerances(axes, rotary)
     done: Set[int] = set()
     bases: List[str] = []
     for run in runs:
-        lines, basis = executed_in_run(run, motion, source, tol)
+        lines, basis = executed_in_run(run, source, axes, wrapped, turn, tol)
         done |= lines
         bases.append(basis)
     return done, bases

@@ -33,6 +33,7 @@ class SendOutcome:
     journal: str = ""
     resumed_from: Optional[str] = None
     resume_from: Optional[str] = None        # suggestion after a stop
+    basis: str = ""                          # how the journal knows: position | sync
     lines: int = 0
 
     @property
@@ -44,7 +45,8 @@ class SendOutcome:
                 "check": self.check.to_json() if self.check else None,
                 "result": self.result.to_json() if self.result else None,
                 "journal": self.journal, "resumed_from": self.resumed_from,
-                "resume_from": self.resume_from, "lines": self.lines}
+                "resume_from": self.resume_from, "resume_basis": self.basis,
+                "lines": self.lines}
 
 
 class SendSession:
@@ -127,7 +129,10 @@ class SendSession:
                 journal.close()
             link.close()
         if not self.outcome.result.ok:
-            self.outcome.resume_from = load_journal(self.journal_path).first_incomplete()
+            state = load_journal(self.journal_path)
+            self.outcome.resume_from = state.first_incomplete()
+            state.executed()
+            self.outcome.basis = state.bases[-1] if state.bases else ""
         return self.outcome
 
     def start(self, on_done: Optional[Callable[["SendSession"], None]] = None
