@@ -153,7 +153,7 @@ def main() -> int:
               "utilisation (gross outline) % | wall s | valid |")
         print("|---|---|---|---|---|---|---|---|")
         print(f"| 2.2 x 1.5 m hide, 6 defects, grade-3 zone, spacing 2, margin 5 | {n} | "
-              f"{m['placed']} | {m['unplaced']} | {100 * m['utilisation']:.2f} | "
+              f"{m['placed_count']} | {m['unplaced_count']} | {100 * m['utilisation']:.2f} | "
               f"{100 * m['utilisation_gross']:.2f} | {wall:.1f} | {'yes' if ok else 'NO'} |")
     print(f"\nload average at end: {os.getloadavg()[0]:.2f}")
     return 0

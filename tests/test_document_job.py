@@ -9,6 +9,7 @@ reopened and undone.
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 
@@ -140,6 +141,14 @@ def test_earlier_change_marks_later_stages_out_of_date(doc, sample):
     assert objects.stage_states(job)["Recognition"] == "current"
     # a decision survives re-recognition
     assert _flag(job, "over").Decision == "Include"
+    pipeline.run_stage(job, "Plan")
+    job.PostMachine = "linuxcnc_tangential"     # plan speeds come from the machine
+    assert objects.stage_states(job)["CutPath"] == "out of date"
+    assert objects.stage_states(job)["Recognition"] == "current"
+    other = sample.replace("sample.dxf", "other.dxf")
+    shutil.copy(sample, other)
+    job.SourceFile = other
+    assert set(objects.stage_states(job).values()) == {"out of date", "missing"}
 
 
 def _full_job(doc, sample, out_dir):
@@ -267,10 +276,10 @@ def test_importer_hook_open_and_insert(sample):
         FreeCAD.closeDocument(d.Name)
 
 
+@pytest.mark.freecadcmd
 def test_freecadcmd_registers_importer_and_finds_venv_packages(tmp_path):
     """Init.py inside the real freecadcmd: importer registered, ezdxf 1.x and
     shapely 2.x from the venv, FreeCAD's numpy untouched."""
-    import shutil
     if shutil.which("freecadcmd") is None:
         if os.environ.get("CI") == "true":
             pytest.fail("freecadcmd missing")
@@ -283,13 +292,16 @@ def test_freecadcmd_registers_importer_and_finds_venv_packages(tmp_path):
             "and numpy.__file__.startswith('/usr/lib/python3/dist-packages'); "
             "print('LC', ezdxf.__version__, shapely.__version__, numpy.__file__); sys.exit(0 if ok else 1)")
     env = dict(os.environ, HOME=home)
-    proc = subprocess.run(["freecadcmd", "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    try:
+        proc = subprocess.run(["freecadcmd", "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "LC 1." in proc.stdout
 
 
 @pytest.mark.timeout(120)
-def test_nest_worker_processes_with_freecad_gui_stdin(doc, sample, monkeypatch):
+def test_nest_worker_processes_with_freecad_gui_stdin(doc, sample, monkeypatch, tmp_path):
     """FreeCAD's GUI replaces sys.stdin by an object without close(); forked
     nesting workers must still start (they close stdin first)."""
 
@@ -308,4 +320,59 @@ def test_nest_worker_processes_with_freecad_gui_stdin(doc, sample, monkeypatch):
     layout = objects.load_data(objects.stage_object(job, "Layout"))
     assert layout.metrics.get("workers") == 2
     assert len(pipeline.placed_objects(job)) == 5
+    # Run job nests through core.job.run_job: the same protection applies
+    job.PlanMethod, job.PlanTimeLimit = "nn", 0.5
+    job.PostOutputFile = str(tmp_path / "run.nc")
+    assert pipeline.run_all(job) == job.PostOutputFile
+    layout = objects.load_data(objects.stage_object(job, "Layout"))
+    assert layout.metrics.get("workers") == 2
     assert sys.stdin is gui_stdin
+
+
+def test_post_formats_from_the_job(doc, sample, tmp_path):
+    """The job writes every format its PostFormat offers: HPGL for the plotter
+    profile, DXF of the cut job (readable by ezdxf), G-code for the knife."""
+    import ezdxf
+    job = _full_job(doc, sample, str(tmp_path))
+    job.PostMachine, job.PostFormat = "hpgl_plotter", "hpgl"
+    job.PostOutputFile = str(tmp_path / "job.plt")
+    pipeline.run_stage(job, "Plan")
+    text = open(pipeline.run_stage(job, "Post")).read()
+    assert text.startswith("IN") and "PD" in text and "PU" in text
+    job.PostFormat = "dxf"
+    job.PostOutputFile = str(tmp_path / "job_cut.dxf")
+    path = pipeline.run_stage(job, "Post")
+    layers = {e.dxf.layer for e in ezdxf.readfile(path).modelspace()}
+    assert len(layers) >= 2
+    assert job.PostLastOutput == path
+
+
+def test_hide_nesting_from_the_job_properties(doc, sample, tmp_path):
+    """NestContainer "hide" reads NestHideFile (HIDE outline, DEFECT regions):
+    every part lands on the hide and off the defect; the container and the
+    defect are shown."""
+    import ezdxf
+    from shapely.geometry import Polygon
+    hide = ezdxf.new("R2010")
+    hide.header["$INSUNITS"] = 4
+    msp = hide.modelspace()
+    msp.add_lwpolyline([(0, 0), (260, -10), (300, 120), (200, 210), (20, 190), (-20, 90)], close=True,
+                       dxfattribs={"layer": "HIDE"})
+    msp.add_circle((140, 100), 25, dxfattribs={"layer": "DEFECT"})
+    hide_path = str(tmp_path / "hide.dxf")
+    hide.saveas(hide_path)
+    job = _recognised(doc, sample)
+    job.NestContainer, job.NestHideFile = "hide", hide_path
+    job.NestMargin, job.NestSpacing, job.NestTimeBudget, job.NestWorkers = 2.0, 2.0, 0.5, "1"
+    pipeline.run_stage(job, "Nest")
+    layout = pipeline.current_layout(job)
+    assert [c.kind for c in layout.containers] == ["hide"] and layout.containers[0].defects
+    assert len(layout.placements) == 5 and not layout.unplaced
+    assert not pipeline.update_collisions(job)
+    kinds = sorted(o.Kind for o in objects.stage_object(job, "Layout").Group if objects.role(o) == "Geometry")
+    assert kinds == ["container", "defect"]
+    defect = Polygon(layout.containers[0].defects[0])
+    for o in pipeline.placed_objects(job):
+        bb = o.Shape.BoundBox
+        assert not Polygon([(bb.XMin, bb.YMin), (bb.XMax, bb.YMin), (bb.XMax, bb.YMax),
+                            (bb.XMin, bb.YMax)]).buffer(-0.5).contains(defect.centroid)

@@ -46,7 +46,7 @@ def test_gui_workflow_from_dxf_to_streamed_job(tmp_path):
     _require_gui_tools()
     sample = write_sample(str(tmp_path / "sample.dxf"))
     run, log, out = _run("workflow.py", tmp_path, sample)
-    failed = [line for line in log.splitlines() if line.startswith("CHECK ") and not line.endswith(" ok")]
+    failed = [line for line in log.splitlines() if line.startswith("CHECK ") and " FAILED: " in line]
     assert run.returncode == 0, "\n".join(failed) or log[-4000:]
     assert "Traceback" not in log, log[log.index("Traceback"):][:3000]
     results = json.loads((out / "result.json").read_text())

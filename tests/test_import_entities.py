@@ -432,6 +432,10 @@ def test_progress_is_reported_and_can_cancel(tmp_path):
     read_drawing(p, RAW, progress=lambda f, m: seen.append(f) or True)
     assert seen[0] == 0.0 and seen[-1] == 1.0 and len(seen) >= 6
     assert seen == sorted(seen)
+    steps = []
+    read_drawing(p, progress=lambda f, m: steps.append((f, m)) or True)
+    assert [f for f, _ in steps] == sorted(f for f, _ in steps)
+    assert any(m.startswith("clean-up") and 0.8 <= f <= 0.95 for f, m in steps)
     with pytest.raises(CancelledError):
         read_drawing(p, RAW, progress=lambda f, m: f < 0.5)
 

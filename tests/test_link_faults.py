@@ -13,8 +13,9 @@ from LeatherCutWorkbench.post.profiles import load_profile
 
 from post_helpers import sample_plan
 
-FAST = dict(status_interval=0.05, link_timeout=0.3, greet_timeout=2.0, hold_timeout=1.0,
-            reset_timeout=1.0, command_timeout=2.0)
+# short, but not so short that a loaded test machine looks like a lost link
+FAST = dict(status_interval=0.05, link_timeout=1.0, greet_timeout=3.0, hold_timeout=2.0,
+            reset_timeout=2.0, command_timeout=3.0)
 
 
 def make_job(profile):
@@ -53,22 +54,24 @@ def connect(emu, profile):
 
 CASES = [
     # id, flavour, mode, fault, planner blocks (0 = a controller that acknowledges
-    # a line once executed; > 0 = GRBL's look-ahead: acknowledged is not executed)
+    # a line once executed; > 0 = GRBL's look-ahead: acknowledged is not executed).
+    # The planner faults hit the curve of the outline (line 38 / 41) right after
+    # three short segments whose lines are then acknowledged but still queued.
     ("error-grbl-send-response", "grbl", "send-response", Fault("error", 45, code=20), 0),
     ("error-grbl-char-count", "grbl", "char-count", Fault("error", 45, code=33), 0),
     ("error-grblhal-latched", "grblhal", "char-count", Fault("error", 45, code=36), 0),
     ("alarm", "grblhal", "char-count", Fault("alarm", 60, code=2), 0),
     ("reset-banner", "grblhal", "char-count", Fault("reset", 70), 0),
-    ("stall", "grblhal", "send-response", Fault("stall", 50, seconds=0.8), 0),
+    ("stall", "grblhal", "send-response", Fault("stall", 50, seconds=2.0), 0),
     ("disconnect", "grblhal", "char-count", Fault("disconnect", 55), 0),
     ("garbled-line", "grbl", "char-count", Fault("garble", 38), 0),
-    ("planner-error-grbl", "grbl", "char-count", Fault("error", 45, code=33), 6),
-    ("planner-error-grblhal", "grblhal", "char-count", Fault("error", 52, code=36), 6),
-    ("planner-alarm", "grblhal", "char-count", Fault("alarm", 53, code=2), 6),
+    ("planner-error-grbl", "grbl", "char-count", Fault("error", 41, code=33), 6),
+    ("planner-error-grblhal", "grblhal", "char-count", Fault("error", 38, code=36), 6),
+    ("planner-alarm", "grblhal", "char-count", Fault("alarm", 38, code=2), 6),
     ("planner-reset-banner", "grblhal", "char-count", Fault("reset", 77), 6),
-    ("planner-stall", "grblhal", "char-count", Fault("stall", 50, seconds=0.8), 6),
+    ("planner-stall", "grblhal", "char-count", Fault("stall", 38, seconds=2.0), 6),
     ("planner-disconnect", "grblhal", "char-count", Fault("disconnect", 55), 6),
-    ("planner-garbled-line", "grbl", "char-count", Fault("garble", 50), 6),
+    ("planner-garbled-line", "grbl", "char-count", Fault("garble", 41), 6),
 ]
 
 
@@ -104,6 +107,7 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
     profile = load_profile("grbl11_knife_z_servo" if flavour == "grbl" else "grblhal_tangential")
     axes = "XYZ" if flavour == "grbl" else "XYZC"
     exact = fault.kind not in ("reset", "disconnect")
+    fault.long_move = bool(planner)      # queued, acknowledged moves wait behind a long one
     job = make_job(profile)
     jpath = str(tmp_path / "job.journal")
     emu = FakeController(flavour=flavour, axes=axes, homing=profile.homing, line_time=line_time,

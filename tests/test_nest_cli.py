@@ -35,7 +35,7 @@ def test_esicup_strip_report_and_outputs(capsys, tmp_path):
                  "--workers", "1", "--layout-out", lay, "--dxf-out", dxf, "--svg-out", svg)
     m = d["metrics"]
     assert d["container"] == {"kind": "strip", "width_mm": 40.004}
-    assert m["placed"] == 43 and d["unplaced"] == [] and m["checked"] is True
+    assert m["placed_count"] == 43 and d["unplaced"] == [] and m["checked"] is True
     assert 0.5 < m["density"] < 0.75
     assert len(d["placements"]) == 43
     assert set(d["placements"][0]) == {"part", "copy", "container", "x", "y", "angle", "mirrored"}
@@ -61,7 +61,8 @@ def test_dxf_parts_on_sheets_with_rotations_and_copies(capsys, tmp_path):
                  "--margin", "5", "--rotations", "0,90", "--time", "1",
                  "--workers", "1")
     assert d["container"]["kind"] == "sheet"
-    assert d["metrics"]["placed"] + len(d["unplaced"]) == 9
+    assert d["metrics"]["placed_count"] + len(d["unplaced"]) == 9
+    assert d["metrics"]["unplaced_count"] == len(d["unplaced"])
     assert all(p["angle"] in (0.0, 90.0) for p in d["placements"])
     assert d["metrics"]["utilisation"] > 0
     assert [c["id"] for c in d["containers"]] == [f"sheet{i + 1}" for i in range(d["metrics"]["sheets"])]
@@ -78,7 +79,7 @@ def test_dxf_parts_on_a_hide(capsys, tmp_path):
     d = run_json(capsys, src, "--hide", hide, "--copies", "4", "--time", "1", "--workers", "1",
                  "--margin", "3")
     assert d["container"] == {"kind": "hide", "hides": ["hide1"]}
-    assert d["metrics"]["placed"] == 12
+    assert d["metrics"]["placed_count"] == 12
     c = d["containers"][0]
     assert c["defects"] == 1 and c["utilisation"] > c["utilisation_gross"] > 0
 
@@ -99,3 +100,16 @@ def test_bad_input_exits_2(capsys, tmp_path):
     assert "bad --rotations" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         main(["nest", src, "--sheet", "100by100"])
+
+
+def test_run_nests_when_a_container_is_given(capsys, tmp_path):
+    src = str(tmp_path / "parts.dxf")
+    parts_dxf(src)
+    out = tmp_path / "job"
+    code = main(["run", src, "-o", str(out), "--sheet", "300x200", "--nest-time", "0.5",
+                 "--nest-workers", "1", "--spacing", "2"])
+    assert code == 0, capsys.readouterr().err
+    rep = json.load(open(out / "report.json"))
+    n = rep["nesting"]
+    assert n["placed"] == 3 and n["unplaced"] == [] and n["containers"] == ["sheet1"]
+    assert n["checked"] is True and 0 < n["utilisation"] < 1

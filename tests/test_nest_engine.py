@@ -33,7 +33,7 @@ def test_sheets_open_as_needed_and_fixed_count_reports_unplaced():
     assert lay.unplaced == []
     assert [c.id for c in lay.containers] == ["sheet1", "sheet2"]
     assert lay.metrics["sheets"] == 2
-    per = {c["id"]: c for c in lay.metrics["containers"]}
+    per = {c["id"]: c for c in lay.metrics["per_container"]}
     assert per["sheet1"]["parts"] + per["sheet2"]["parts"] == 7
     assert max(per["sheet1"]["parts"], per["sheet2"]["parts"]) == 4     # 4 is all a sheet holds
     assert lay.metrics["utilisation"] == pytest.approx(7 * 2400 / (2 * 130 * 90), abs=1e-6)
@@ -95,7 +95,7 @@ def test_strip_esicup_fu_is_dense_and_valid():
     lay = nest(inst.parts, opts)
     assert valid(inst.parts, lay, opts) == []
     m = lay.metrics
-    assert m["placed"] == 12 and lay.unplaced == []
+    assert m["placed_count"] == 12 and lay.unplaced == []
     assert m["strip_length_mm"] >= inst.item_area / inst.strip_height
     assert m["density"] == pytest.approx(inst.item_area / (m["strip_length_mm"] * inst.strip_height))
     assert m["density"] > 0.80          # bottom-left fill alone reaches ~0.76
@@ -249,3 +249,27 @@ def test_bad_options_are_input_errors():
         nest([rect("a", 1, 1), rect("a", 2, 2)], NestOptions(container=ContainerSpec.strip(10)))
     with pytest.raises(InputError, match="sparrow engine only nests on a strip"):
         nest(parts, NestOptions(container=ContainerSpec.sheet(10, 10), engine="sparrow"))
+
+
+def test_two_hides_in_one_dxf_fill_in_order(tmp_path):
+    path = str(tmp_path / "hides.dxf")
+    doc = ezdxf.new(units=4)
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(500, 0), (700, 0), (700, 150), (500, 150)], close=True,
+                       dxfattribs={"layer": "HIDE"})
+    msp.add_lwpolyline([(0, 0), (200, 0), (220, 80), (200, 150), (0, 150)], close=True,
+                       dxfattribs={"layer": "HIDE_2"})
+    msp.add_circle((600, 75), 10, dxfattribs={"layer": "DEFECT"})
+    doc.saveas(path)
+    hides = read_hide_dxf(path)
+    assert [h.id for h in hides] == ["hide1", "hide2"]
+    assert hides[0].base_grade == 2 and hides[1].base_grade == 1      # leftmost first
+    assert hides[0].defects == [] and len(hides[1].defects) == 1
+    parts = [rect("p", 90, 70, q=6, rotations=[0])]   # 4 fit the left hide, 2 go right
+    opts = NestOptions(container=ContainerSpec.hide(*hides), time_budget=0, workers=1)
+    lay = nest(parts, opts)
+    assert valid(parts, lay, opts) == []
+    by = {}
+    for p in lay.placements:
+        by[p.container] = by.get(p.container, 0) + 1
+    assert by["hide1"] == 4 and by["hide2"] == 2 and lay.unplaced == []

@@ -179,3 +179,20 @@ def test_window_dp_is_exact_inside_the_window():
     assert gain == pytest.approx(before - best)
     # items outside the window keep their candidates
     assert all(c[t[i]] == clusters[t[i]][0] for i in (0, 1, 5, 6))
+
+
+def test_dp_with_a_single_home_candidate_is_exact():
+    D, clusters = random_gtsp(4, n_clusters=6, per=3, asym=True)
+    # home = node 0 alone; the other clusters keep three nodes each
+    nodes = [0] + [v for cl in clusters[1:] for v in cl]
+    cl_ids, off = [[0]], 1
+    for cl in clusters[1:]:
+        cl_ids.append(list(range(off, off + len(cl))))
+        off += len(cl)
+    inst = MatrixInstance(D, cl_ids, start_node=np.array(nodes))
+    order = [0, 2, 5, 1, 4, 3]
+    choice, cost = optimal_entries(inst, order)
+    real = [[0]] + clusters[1:]
+    best = min(tour_len(D, list(p)) for p in itertools.product(*[real[k] for k in order]))
+    assert cost == pytest.approx(best)
+    assert tour_len(D, [nodes[choice[k]] for k in order]) == pytest.approx(best)

@@ -455,3 +455,24 @@ def test_under_flags_say_what_accepting_does():
     assert actions == ["close", "join", "trim"]
     assert all(f.kind == "under" for f in rec.flags)
     assert next(f for f in rec.flags if f.action == "trim").fix == []
+
+
+def test_open_lines_in_pattern_pieces_are_slits_not_lead_ins():
+    edges = S.rect(0, 0, 50, 40) + [LineEdge((10, 0), (10, 5), S.src())]
+    pieces = {"P": PieceInfo(key="P", name="Piece", edges=list(range(5)))}
+    rec = recognise(S.drawing(edges, pieces=pieces))
+    (p,) = rec.parts
+    assert not p.lead_ins and len(rec.open_chains) == 1
+    assert rec.open_chains[0].length == pytest.approx(5.0)
+
+
+def test_line_running_into_the_part_is_a_slit_not_a_lead_in():
+    edges = S.rect(0, 0, 50, 40) + [LineEdge((10, 0), (10, 5), S.src()),      # into the part
+                                     LineEdge((30, -5), (30, 0), S.src())]     # from outside
+    edges += S.rect(20, 15, 10, 10) + [LineEdge((22, 20), (20, 20), S.src()),  # from inside hole
+                                       LineEdge((30, 20), (33, 20), S.src())]  # hole into material
+    rec = run(edges)
+    (p,) = rec.parts
+    starts = sorted(tuple(li.start) for li in p.lead_ins)
+    assert starts == [(22.0, 20.0), (30.0, -5.0)]
+    assert sorted(round(c.length, 6) for c in rec.open_chains) == [3.0, 5.0]

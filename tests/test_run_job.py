@@ -2,7 +2,8 @@
 
 The example (examples/bag.dxf, made by tools/make_example.py) has 7 parts,
 6 holes (an elliptical slot and 5 punched circles), 2 lead-ins (a line touching
-the flap's corner and an arc touching the strap's edge) and 1 open stitch line.
+the flap's corner and an arc touching the strap's edge) and a stitch line on
+layer STITCH that is drawn but must not be cut.
 """
 
 import json
@@ -43,7 +44,9 @@ def test_report_counts_match_the_drawing(job):
     assert c["parts"] == 7 and c["parts_excluded"] == 0
     assert c["holes"] == 6
     assert c["lead_ins"] == 2
-    assert c["open_chains"] == 1
+    # The stitch guide line sits on layer STITCH: drawn, not cut, and said so.
+    assert c["open_chains"] == 0
+    assert any(w["code"] == "layer-not-cut" and "STITCH" in w["message"] for w in rep["warnings"])
     # Every hole and outline is cut exactly once.
     kinds = [o["kind"] for o in rep["order"]]
     assert kinds.count("outer") == 7 and kinds.count("hole") == 6

@@ -7,9 +7,10 @@ Also provides the import options every later verb accepts:
 from __future__ import annotations
 
 import argparse
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Optional, Tuple
 
 from ..core.dxfimport import ImportOptions, read_drawing
+from ..core.dxfimport.layers import DEFAULT_NOT_CUT
 from ..core.dxfimport.options import PATTERN_MODES
 from ..core.model import Drawing
 from . import Report, add_common_options
@@ -29,6 +30,14 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="keep zero-length edges, duplicates and overlaps; no T-junction splits")
     g.add_argument("--cleanup-tol", dest="import_tolerance", type=float, default=0.01,
                    metavar="MM", help="clean-up tolerance in mm (default 0.01)")
+    g.add_argument("--cut-layers", dest="import_cut_layers", metavar="PATTERNS", default=None,
+                   help="comma-separated layer-name patterns (case-insensitive, * and ?): only "
+                        "these layers are cut (plain drawings; default: every layer not matched "
+                        "by --not-cut-layers)")
+    g.add_argument("--not-cut-layers", dest="import_not_cut_layers", metavar="PATTERNS",
+                   default=",".join(DEFAULT_NOT_CUT),
+                   help="comma-separated layer-name patterns drawn but not cut (default "
+                        f"{','.join(DEFAULT_NOT_CUT)}; '' cuts every layer)")
 
 
 def options_from_args(args: argparse.Namespace) -> ImportOptions:
@@ -36,7 +45,17 @@ def options_from_args(args: argparse.Namespace) -> ImportOptions:
     return ImportOptions(units=getattr(args, "import_units", None),
                          pattern_mode=getattr(args, "import_pattern_mode", "auto"),
                          cleanup=getattr(args, "import_cleanup", True),
-                         tolerance=getattr(args, "import_tolerance", 0.01))
+                         tolerance=getattr(args, "import_tolerance", 0.01),
+                         cut_layers=_patterns(getattr(args, "import_cut_layers", None)),
+                         not_cut_layers=_patterns(getattr(args, "import_not_cut_layers", None))
+                         or ())
+
+
+def _patterns(text: Optional[str]) -> Optional[Tuple[str, ...]]:
+    """Comma-separated patterns -> tuple (None when the option was not given)."""
+    if text is None:
+        return None
+    return tuple(p.strip() for p in text.split(",") if p.strip())
 
 
 def register(subparsers: Any) -> None:

@@ -246,8 +246,8 @@ def report_dict(source: str, opts, layout, findings) -> Dict[str, Any]:
         "margin_mm": opts.margin,
         "time_budget_s": opts.time_budget,
         "seed": opts.seed,
-        "metrics": {k: v for k, v in m.items() if k != "containers"},
-        "containers": m.get("containers", []),
+        "metrics": {k: v for k, v in m.items() if k != "per_container"},
+        "containers": m.get("per_container", []),
         "placements": [{"part": p.part_id, "copy": p.copy, "container": p.container,
                         "x": round(p.x, 6), "y": round(p.y, 6), "angle": p.angle,
                         "mirrored": p.mirrored} for p in layout.placements],
@@ -258,7 +258,7 @@ def report_dict(source: str, opts, layout, findings) -> Dict[str, Any]:
 
 def report_text(d: Dict[str, Any]) -> str:
     m = d["metrics"]
-    lines = [f"{d['file']}: {m.get('placed', 0)} placed, {m.get('unplaced', 0)} unplaced "
+    lines = [f"{d['file']}: {m.get('placed_count', 0)} placed, {m.get('unplaced_count', 0)} unplaced "
              f"({d['engine']} engine, {m.get('time_s', 0):.1f} s)"]
     kind = d["container"]["kind"]
     if kind == "strip":

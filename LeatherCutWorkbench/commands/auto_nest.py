@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import FreeCAD
 import FreeCADGui as Gui
+from PySide import QtGui
 
 from ..document import objects
 from . import base, panel
@@ -18,10 +19,24 @@ class NestPanel(panel.StagePanel):
     TITLE = QT_TRANSLATE_NOOP("LeatherCut", "Auto-nest")
     STAGE = "Nest"
 
+    #: container kind -> the fields that apply to it (the others are greyed out)
+    FIELDS = {"sheet": ("NestSheetWidth", "NestSheetHeight", "NestSheetCount"),
+              "strip": ("NestStripWidth",), "hide": ("NestHideFile", "browseNestHideFile")}
+
     def __init__(self, job):
         super().__init__(job)
+        combo = self.form.findChild(QtGui.QComboBox, "NestContainer")
+        combo.currentIndexChanged.connect(lambda _i: self._container_fields(combo.currentText()))
         if job.NestContainer == "none":
             self.set_widget("NestContainer", "sheet")
+        self._container_fields(job.NestContainer)
+
+    def _container_fields(self, kind: str) -> None:
+        for k, names in self.FIELDS.items():
+            for name in names:
+                w = self.form.findChild(QtGui.QWidget, name)
+                if w is not None:
+                    w.setEnabled(k == kind)
 
     def after_run(self) -> None:
         rec = objects.stage_object(self.job, "Recognition")

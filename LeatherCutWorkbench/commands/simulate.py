@@ -89,7 +89,7 @@ class SimulatePanel:
         self.timer = QtCore.QTimer()
         self.timer.setInterval(40)
         self.timer.timeout.connect(self.tick)
-        size = max(self._extent() / 60.0, 2.0)
+        size = max(self._extent() / 25.0, 2.0)
         self.knife_size = size
         self.seek(0.0)
 

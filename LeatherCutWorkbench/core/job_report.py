@@ -35,7 +35,8 @@ def job_report(result: JobResult) -> Dict[str, Any]:
         "cut_length_mm": round(sum(it.length for it in items), 3),
         "idle_travel_mm": round(sum(_len(a, b) for a, b in plan.idle_moves()), 3),
         "lifts": sum(len(it.lifts) for it in items),
-        "plan": {"method": plan.method, "home": list(plan.home), **plan.metrics},
+        "plan": {"method": plan.method, "home": [c + 0.0 for c in plan.home],  # no -0.0
+                 **plan.metrics},
         "order": [{"n": n, "contour": it.contour_id, "part": it.part_id, "kind": it.kind,
                    "entry": [round(it.entry[0], 4), round(it.entry[1], 4)]}
                   for n, it in enumerate(items, start=1)],

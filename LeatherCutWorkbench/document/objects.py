@@ -114,13 +114,16 @@ class JobProxy(Proxy):
         add_job_properties(obj)
 
     def onChanged(self, obj, prop):
-        stage = stage_of_property(prop)
+        stage = "Import" if prop == "SourceFile" else stage_of_property(prop)
         if stage is None or getattr(obj, "Proxy", None) is not self or restoring(obj):
             return
-        if stage == "Import" or prop in ("SourceFile",):
+        if stage == "Import":
             mark_out_of_date(obj, "Import", include_self=True)
         elif stage != "Post":
             mark_out_of_date(obj, stage, include_self=True)
+        elif prop == "PostMachine" and getattr(obj, "PlanFromMachine", False):
+            # the plan's speeds and knife lift angle come from the machine
+            mark_out_of_date(obj, "Plan", include_self=True)
 
     def onDocumentRestored(self, obj):
         # Options added by newer stage packages appear with their defaults.

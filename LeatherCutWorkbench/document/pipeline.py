@@ -634,7 +634,8 @@ def _run_prepare(job):
 def _run_compute(inputs, progress):
     from ..core.job import run_job
     path, opts = inputs
-    return run_job(path, opts, progress), opts
+    with closable_stdin():      # nesting may fork worker processes
+        return run_job(path, opts, progress), opts
 
 
 def _run_apply(job, result):

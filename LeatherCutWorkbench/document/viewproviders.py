@@ -208,6 +208,14 @@ class CutPathViewProvider(ViewProvider):
         if plan is None:
             return
         size = _label_size(plan)
+        # holes red, open chains grey, lead-ins orange over the blue cutting moves
+        for kind, style_kind in (("hole", "hole"), ("open", "open")):
+            moves = _polyline_moves([it.segments for it in plan.items if it.kind == kind])
+            if moves:
+                self.overlay.addChild(_lines(moves, style.colour(style_kind), 0xFFFF, 2.0))
+        leads = _polyline_moves([it.segments[:it.lead_in_count] for it in plan.items if it.lead_in_count])
+        if leads:
+            self.overlay.addChild(_lines(leads, style.colour("lead_in"), 0xFFFF, 3.0))
         if getattr(vobj, "ShowIdleMoves", True):
             self.overlay.addChild(_lines(plan.idle_moves(), style.colour("idle"), 0x0F0F, 1.5))
         if getattr(vobj, "ShowEntryPoints", True):
@@ -216,6 +224,16 @@ class CutPathViewProvider(ViewProvider):
         if getattr(vobj, "ShowOrderNumbers", True):
             labels = [(str(i + 1), it.start) for i, it in enumerate(plan.items)]
             self.overlay.addChild(_labels(labels, (0.0, 0.0, 0.0), size))
+
+
+def _polyline_moves(paths) -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:
+    """Chord pairs of flattened paths (for Coin line sets)."""
+    from ..core.geometry import path_points
+    out = []
+    for segs in paths:
+        pts = path_points(segs, 0.05)
+        out.extend(zip(pts, pts[1:]))
+    return out
 
 
 def _label_size(plan) -> float:

@@ -72,6 +72,9 @@ class Fault:
     code: int = 20            # error / alarm number
     seconds: float = 1.0      # stall length
     wait_full: bool = False   # hold the line until the RX buffer is 3/4 full (busy machine)
+    long_move: bool = False   # planner: the machine is in a long move from planner_blocks
+                              # lines before the fault until a hold/reset (or 3 s), so the
+                              # queue holds acknowledged, unexecuted lines when it fires
     fired: bool = False
 
 
@@ -114,6 +117,7 @@ class FakeController:
         self._queue: List[tuple] = []       # (results entry, block, end position)
         self._next_exec = 0.0
         self._mpos = dict(self._interp.pos)
+        self._frozen_until = 0.0
         self._thread = threading.Thread(target=self._run, name="fake-grbl", daemon=True)
 
     # ------------------------------------------------------------ lifecycle
@@ -197,7 +201,10 @@ class FakeController:
                 continue
             self._execute_queue()
             while self._has_line() and time.monotonic() >= self._next_time:
-                if self._waiting_for_full_buffer() or not self._planner_accepts():
+                if self._waiting_for_full_buffer():
+                    break
+                if not self._planner_accepts():
+                    self._frozen_until = 0.0      # a line waits for the queue: move on
                     break
                 self._next_time = time.monotonic() + self.line_time
                 self._process_one()
@@ -208,6 +215,14 @@ class FakeController:
 
     def _execute_queue(self) -> None:
         """Run queued motion blocks, one per ``block_time``."""
+        nxt = self.gcode_lines + 1
+        for f in self.faults:
+            if f.long_move and not f.fired and not hasattr(f, "_moving") \
+                    and f.at_line - self.planner_blocks < nxt <= f.at_line:
+                f._moving = True
+                self._frozen_until = time.monotonic() + 3.0
+        if time.monotonic() < self._frozen_until:
+            return
         while self._queue and time.monotonic() >= self._next_exec:
             entry, block, end = self._queue.pop(0)
             entry[3] = True
@@ -257,6 +272,7 @@ class FakeController:
         if b == ord("?"):
             self._send(self._status())
         elif b == ord("!"):
+            self._frozen_until = 0.0
             if self._state in ("Idle", "Run"):
                 self._state = "Hold:0"
         elif b == ord("~"):
@@ -280,6 +296,7 @@ class FakeController:
 
     def _reset(self, moving: bool, power_cycle: bool = False) -> None:
         self.session += 1
+        self._frozen_until = 0.0
         self._rx.clear()
         self._latched = None
         if self._check and self._saved_interp is not None:

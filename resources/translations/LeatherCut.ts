@@ -273,7 +273,7 @@
 <context>
     <name>LeatherCut</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="146"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="173"/>
         <source>(post-process the job first)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -283,7 +283,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="18"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="19"/>
         <source>Auto-nest</source>
         <translation type="unfinished"></translation>
     </message>
@@ -303,7 +303,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="391"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="415"/>
         <source>Container</source>
         <translation type="unfinished"></translation>
     </message>
@@ -328,7 +328,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="454"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="457"/>
         <source>Cut path</source>
         <translation type="unfinished"></translation>
     </message>
@@ -343,17 +343,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="397"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="421"/>
         <source>Defects</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="170"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="172"/>
         <source>Drawing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="177"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="205"/>
         <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -368,17 +368,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="270"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="272"/>
         <source>Excluded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="212"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="214"/>
         <source>Flags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="267"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="269"/>
         <source>Holes</source>
         <translation type="unfinished"></translation>
     </message>
@@ -418,17 +418,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="178"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="180"/>
         <source>Layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="387"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="411"/>
         <source>Layout</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="268"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="270"/>
         <source>Lead-ins</source>
         <translation type="unfinished"></translation>
     </message>
@@ -453,7 +453,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="181"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="183"/>
         <source>Marks</source>
         <translation type="unfinished"></translation>
     </message>
@@ -478,12 +478,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="269"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="271"/>
         <source>Open chains</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="266"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="268"/>
         <source>Outer contours</source>
         <translation type="unfinished"></translation>
     </message>
@@ -508,7 +508,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="173"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="201"/>
         <source>Post-process the job as G-code first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -518,7 +518,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="208"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="210"/>
         <source>Recognition</source>
         <translation type="unfinished"></translation>
     </message>
@@ -538,17 +538,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="260"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="288"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="233"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="261"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="220"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="248"/>
         <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -573,7 +573,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="419"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="422"/>
         <source>over-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -583,12 +583,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="152"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="179"/>
         <source>start of the job</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="43"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="58"/>
         <source>strip length {0:.1f} mm</source>
         <translation type="unfinished"></translation>
     </message>
@@ -598,7 +598,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="420"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="423"/>
         <source>under-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -608,12 +608,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="41"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="56"/>
         <source>utilisation {0:.1f} %</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="44"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="59"/>
         <source>{0} containers</source>
         <translation type="unfinished"></translation>
     </message>
@@ -628,7 +628,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="38"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="53"/>
         <source>{0} placed, {1} unplaced</source>
         <translation type="unfinished"></translation>
     </message>
@@ -643,7 +643,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="215"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="243"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -706,12 +706,12 @@
 <context>
     <name>LeatherCut_AutoNest</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="51"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="66"/>
         <source>Auto-nest</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="52"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="67"/>
         <source>Nest the recognised parts on sheets, a strip or a leather hide with defects</source>
         <translation type="unfinished"></translation>
     </message>
@@ -836,12 +836,12 @@
 <context>
     <name>LeatherCut_SendToCutter</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="246"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="274"/>
         <source>Send to cutter…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="247"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="275"/>
         <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
         <translation type="unfinished"></translation>
     </message>

@@ -46,7 +46,6 @@ USER_CFG = """<?xml version="1.0" encoding="utf-8" standalone="no" ?>
 class GuiRun:
     returncode: int
     log: str
-    home: str
 
 
 def missing_tools() -> Optional[str]:
@@ -82,7 +81,9 @@ def run_gui_script(script: str, env: Dict[str, str], timeout: float = 180.0,
     try:
         proc = subprocess.run(cmd, env=full_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                               timeout=timeout, cwd=home)
-        return GuiRun(proc.returncode, proc.stdout.decode("utf-8", "replace"), home)
+        return GuiRun(proc.returncode, proc.stdout.decode("utf-8", "replace"))
     except subprocess.TimeoutExpired as exc:
         out = (exc.stdout or b"").decode("utf-8", "replace")
-        return GuiRun(-9, out + f"\n[timed out after {timeout} s]", home)
+        return GuiRun(-9, out + f"\n[timed out after {timeout} s]")
+    finally:
+        shutil.rmtree(home, ignore_errors=True)

@@ -22,6 +22,7 @@ import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
+T0 = time.monotonic()
 OUT = os.environ["LC_OUT"]
 SAMPLE = os.environ["LC_SAMPLE"]
 results = []
@@ -29,7 +30,7 @@ results = []
 
 def check(name, cond, detail=""):
     results.append({"check": name, "ok": bool(cond), "detail": str(detail)})
-    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)}", flush=True)
+    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)} [{time.monotonic() - T0:.1f} s]", flush=True)
     return cond
 
 
@@ -155,7 +156,8 @@ def steps():
     cut = objects.stage_object(job, "CutPath")
     check("cut path drawn", cut is not None and len(cut.Shape.Edges) > 20 and cut.IdleTravel > 0)
     vp = cut.ViewObject.Proxy
-    check("order numbers and idle moves drawn", vp.overlay.getNumChildren() == 3, vp.overlay.getNumChildren())
+    # holes, lead-ins, idle moves, entry points, order numbers (no open chains after nesting)
+    check("order numbers and idle moves drawn", vp.overlay.getNumChildren() == 5, vp.overlay.getNumChildren())
 
     p = command_panel("LeatherCut_Simulate")
     p.speed.setValue(50.0)
@@ -200,7 +202,7 @@ def steps():
 
     # a slow controller: feed hold, cycle start, stop safely, then resume from the journal
     os.remove(out_nc + ".journal")
-    ctrl = FakeController(flavour="grblhal", axes=prof.axes, line_time=0.03,
+    ctrl = FakeController(flavour="grblhal", axes=prof.axes, line_time=0.015,
                           wrapped=prof.rotary_axis if prof.rotary_wrap else "")
     ctrl.start()
     try:
@@ -261,7 +263,7 @@ def steps():
                                                   "Layout": "current", "CutPath": "current"}, states)
     cut = objects.stage_object(job, "CutPath")
     check("cut path view restored", type(cut.ViewObject.Proxy).__name__ == "CutPathViewProvider"
-          and cut.ViewObject.Proxy.overlay.getNumChildren() == 3)
+          and cut.ViewObject.Proxy.overlay.getNumChildren() == 5)
     check("flag decisions restored", sorted(f.Decision for f in pipeline.flag_objects(job)) == ["Accept", "Include"])
     check("options restored", job.NestContainer == "sheet" and job.NestSheetWidth == 400.0)
     Gui.runCommand("LeatherCut_PostProcess")

@@ -31,7 +31,7 @@ from collections import defaultdict
 from itertools import chain
 from operator import attrgetter
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import shapely
@@ -66,10 +66,16 @@ class CleanupCounts:
                 "edges_after": self.edges_after, "removed_by_entity_type": dict(self.by_type)}
 
 
-def clean(edges: Sequence[Any], tol: float) -> Tuple[List[Any], CleanupCounts]:
+def clean(edges: Sequence[Any], tol: float,
+          step: Optional[Callable[[float, str], None]] = None) -> Tuple[List[Any], CleanupCounts]:
     """Cleaned copy of ``edges`` and the counts.  Edges are grouped by
     (``src.piece``, ``src.role``); within a group lines come first, then arcs,
-    ellipses and splines, each in their original order."""
+    ellipses and splines, each in their original order.  ``step(fraction,
+    message)`` is called as groups and stages complete."""
+    def tick(done: int, what: str) -> None:
+        if step is not None:
+            step(done / max(len(edges), 1), what)
+
     counts = CleanupCounts(edges_before=len(edges))
     groups: Dict[Tuple[str, str], Tuple[list, list, list, list]] = {}
     for e in edges:
@@ -81,7 +87,9 @@ def clean(edges: Sequence[Any], tol: float) -> Tuple[List[Any], CleanupCounts]:
         t = type(e)
         g[0 if t is LineEdge else 1 if t is ArcEdge else 2 if t is EllipseEdge else 3].append(e)
     result: List[Any] = []
+    done = 0
     for lines, arcs, ellipses, others in groups.values():
+        size = len(lines) + len(arcs) + len(ellipses) + len(others)
         others = _drop_zero_and_duplicates(others, tol, counts)
         ends = [np.empty((0, 2))]
         if arcs:
@@ -92,8 +100,10 @@ def clean(edges: Sequence[Any], tol: float) -> Tuple[List[Any], CleanupCounts]:
             ends.append(ell_ends)
         if lines:
             lines, xy = _dedupe_lines(lines, tol, counts)
+            tick(done + size // 4, "clean-up: duplicates removed")
             if len(lines) > 1:
                 lines, xy = _merge_overlaps(lines, xy, tol, counts)
+            tick(done + size // 2, "clean-up: collinear overlaps merged")
             extra = [p for e in others for p in _end_points(e)]
             if extra:
                 ends.append(np.asarray(extra, dtype=float))
@@ -102,6 +112,8 @@ def clean(edges: Sequence[Any], tol: float) -> Tuple[List[Any], CleanupCounts]:
         result.extend(arcs)
         result.extend(ellipses)
         result.extend(others)
+        done += size
+        tick(done, "clean-up: T-junctions split")
     counts.edges_after = len(result)
     return result, counts
 

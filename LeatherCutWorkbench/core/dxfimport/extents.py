@@ -83,13 +83,15 @@ def _ellipse_bounds(e: EllipseEdge) -> BBox:
 def bounds(edges: Iterable[Any], points: Iterable[Tuple[float, float]] = ()) -> Optional[BBox]:
     """Union of the edges' bounds and the points; None when both are empty.
     Lines and arcs (nearly all edges) are handled with numpy."""
-    lines, arcs, boxes = [], [], []
+    lines, arcs, ellipses, boxes = [], [], [], []
     for e in edges:
         t = type(e)
         if t is LineEdge:
             lines.append(e)
         elif t is ArcEdge:
             arcs.append(e)
+        elif t is EllipseEdge:
+            ellipses.append(e)
         else:
             boxes.append(edge_bounds(e))
     boxes.extend((x, y, x, y) for x, y in points)
@@ -102,6 +104,10 @@ def bounds(edges: Iterable[Any], points: Iterable[Tuple[float, float]] = ()) -> 
         boxes.append(_arcs_bounds(np.fromiter(
             ch((*e.center, e.radius, e.start_angle, e.sweep) for e in arcs), float,
             count=5 * len(arcs)).reshape(-1, 5)))
+    if ellipses:
+        boxes.append(_ellipses_bounds(np.fromiter(
+            ch((*e.center, *e.major_axis, e.ratio, e.start_param, e.end_param) for e in ellipses),
+            float, count=7 * len(ellipses)).reshape(-1, 7)))
     if not boxes:
         return None
     b = np.array(boxes, dtype=float)
@@ -121,6 +127,22 @@ def _arcs_bounds(a: np.ndarray) -> BBox:
         xs.append(np.where(inside, cx + dx * r, xs[0]))
         ys.append(np.where(inside, cy + dy * r, ys[0]))
     x, y = np.stack(xs), np.stack(ys)
+    return (x.min(), y.min(), x.max(), y.max())
+
+
+def _ellipses_bounds(a: np.ndarray) -> BBox:
+    """Exact box of elliptical arcs given as rows (cx, cy, mx, my, ratio, s0, s1):
+    end points plus the parameters where dx/ds or dy/ds vanish inside [s0, s1]."""
+    cx, cy, mx, my, ratio, s0, s1 = a.T
+    nx, ny = -my * ratio, mx * ratio
+    params = [s0, s1]
+    for base in (np.arctan2(nx, mx), np.arctan2(ny, my)):
+        for cand in (base, base + math.pi):
+            s = cand + np.ceil((s0 - cand) / (2 * math.pi)) * 2 * math.pi
+            params.append(np.where(s <= s1, s, s0))
+    p = np.stack(params)
+    x = cx + mx * np.cos(p) + nx * np.sin(p)
+    y = cy + my * np.cos(p) + ny * np.sin(p)
     return (x.min(), y.min(), x.max(), y.max())
 
 

@@ -83,7 +83,7 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
         findings.append(Finding("info", "aama-pattern", "AAMA / ASTM D6673 pattern file: one piece "
                                 "per block, layer numbers give cut/notch/drill/grain roles", path))
     else:
-        rules = Rules(lambda layer: "cut", lambda layer: "point")
+        rules = Rules(options.layer_selection().role_of, lambda layer: "point")
     walker = Walker(doc, out, rules)
     walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8)
     out.finish()
@@ -91,6 +91,8 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     paper = _paper_space_notes(doc, path, findings)
 
     edges, marks, texts = out.edges, out.marks, out.texts
+    if not is_aama:
+        findings.extend(options.layer_selection().findings([e.src.layer for e in edges], path))
     box = bounds(edges, (m.position for m in marks))
     _check_usable(path, edges, marks, texts, found, out)
     if box is not None:
@@ -112,7 +114,8 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     cleanup_json = None
     if options.cleanup:
         report(progress, 0.8, "cleaning up edges")
-        edges, counts = clean(edges, options.tolerance)
+        edges, counts = clean(edges, options.tolerance,
+                              lambda f, msg: report(progress, min(0.8 + 0.15 * f, 0.95), msg))
         cleanup_json = counts.to_json()
         if counts.edges_before != counts.edges_after or counts.t_junctions:
             findings.append(Finding(
@@ -223,7 +226,7 @@ def _stats(doc: Any, info: Dict[str, Any], found: Counter, out: Collector, walke
            edges: List[Any], marks: List[Any], texts: List[Any], box, offset, unit: str,
            unit_source: str, insunits, scale: float, is_aama: bool, cleanup_json,
            paper: Dict[str, int], tol_hint_mm: Optional[float]) -> Dict[str, Any]:
-    kinds = Counter(type(e).__name__[:-4].lower() for e in edges)
+    kinds = Counter({t.__name__[:-4].lower(): n for t, n in Counter(map(type, edges)).items()})
     layer_roles = Counter(map(attrgetter("src.layer", "src.role"), edges))
     roles: Counter = Counter()
     edge_count: Counter = Counter()

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Optional, Tuple
 
 from ..errors import InputError
 from .extents import HUGE_COORDINATE_MM
+from .layers import DEFAULT_NOT_CUT, LayerSelection
 from .units import parse_units
 
 PATTERN_MODES = ("auto", "aama", "off")
@@ -26,6 +27,9 @@ class ImportOptions:
       split T-junctions (see :mod:`.cleanup`).
     * ``tolerance``: clean-up tolerance in mm (duplicate grid, collinearity,
       T-junction distance, zero length).
+    * ``cut_layers`` / ``not_cut_layers``: layer-name patterns (case-insensitive,
+      shell style) deciding which layers of a plain drawing are cut; see
+      :mod:`.layers`.  Pattern files use the AAMA layer numbers instead.
     * ``local_origin``: move drawings whose coordinates exceed
       ``huge_coordinate_mm`` to a local origin (``Drawing.offset``).
     """
@@ -36,6 +40,12 @@ class ImportOptions:
     tolerance: float = 0.01
     local_origin: bool = True
     huge_coordinate_mm: float = HUGE_COORDINATE_MM
+    cut_layers: Optional[Tuple[str, ...]] = None
+    not_cut_layers: Tuple[str, ...] = DEFAULT_NOT_CUT
+
+    def layer_selection(self) -> LayerSelection:
+        """The cut / not-cut rule for plain drawings."""
+        return LayerSelection(self.cut_layers, self.not_cut_layers)
 
     def validated(self) -> "ImportOptions":
         """Self, after checking values; InputError names the bad option."""

@@ -94,7 +94,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     types = [t for t in types if t.quantity > 0]
     findings: List[Finding] = []
     if not types:
-        return Layout(containers=[], placements=[], unplaced=[], metrics={"placed": 0},
+        return Layout(containers=[], placements=[], unplaced=[], metrics={"placed_count": 0},
                       findings=[Finding("warning", "nothing-to-nest", "no parts to nest")])
     scale = _grid_scale(types, options)
     half_gap = options.spacing / 2.0
@@ -242,7 +242,8 @@ def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, orde
     for b, pl in rows:
         pl.container = names[b]
         placements_out.append(pl)
-    metrics.update({"containers": per, "placed": len(placements_out), "unplaced": len(unplaced)})
+    metrics.update({"per_container": per, "placed_count": len(placements_out),
+                    "unplaced_count": len(unplaced)})
     layout = Layout(containers=containers, placements=placements_out, unplaced=unplaced,
                     metrics=metrics, findings=[])
     if unplaced:

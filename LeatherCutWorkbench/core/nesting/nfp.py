@@ -5,8 +5,10 @@ For a fixed piece A (at the origin) and a moving piece B, the no-fit polygon
 B + t overlaps A: the Minkowski sum A (+) (-B).  pyclipper's ``MinkowskiSum``
 of a closed path sweeps -B along A's boundary; the union with A shifted by one
 vertex of -B (B's vertex inside A) and with -B shifted by a vertex of A (A
-inside B) fills the interior.  Holes of A (already shrunk by the spacing) give "part-in-part"
-islands: the translations that put B wholly inside the hole, i.e. the hole
+inside B) fills the interior.  Only the outer boundary of that union is kept
+(rounding leaves sliver holes and degenerate islands; a genuine locked pocket
+is rare and dropping it is safe).  Holes
+of A (already shrunk by the spacing) give "part-in-part" islands: the translations that put B wholly inside the hole, i.e. the hole
 shifted by -b0 minus the sweep of -B along the hole boundary; they are cut
 out of the solid NFP, so one region per pair covers both cases.
 
@@ -65,9 +67,11 @@ def solid_nfp(a_outer: IntPath, b_outer: IntPath) -> List[IntPath]:
     sweep = pyclipper.MinkowskiSum(nb, a_outer, True)
     base = _shift(a_outer, nb[0][0], nb[0][1])           # B's vertex inside A
     cover = _shift(nb, a_outer[0][0], a_outer[0][1])      # A's vertex inside B
-    # Holes of the union are dropped: rounding leaves sliver holes between nearly
-    # parallel edges, and a genuine locked pocket is rare -- dropping is safe.
-    return [p for p in union(list(sweep) + [base, cover]) if pyclipper.Orientation(p)]
+    # The sum of two connected shapes is connected: keep the outer boundary only.
+    # Rounding leaves sliver holes (and degenerate islands inside them) between
+    # nearly parallel edges; a genuine locked pocket is rare -- dropping is safe.
+    outers = [p for p in union(list(sweep) + [base, cover]) if pyclipper.Orientation(p)]
+    return [max(outers, key=pyclipper.Area)] if outers else []
 
 
 def inner_fit(region_outer: IntPath, b_outer: IntPath) -> List[IntPath]:

@@ -6,9 +6,15 @@ angles, mirroring, grade).  A :class:`Variant` is one orientation of a piece
 type -- mirrored about the part's Y axis first, then rotated about the part's
 origin -- in the engine's integer grid (pyclipper works on integers):
 
-* ``outer``: the outline inflated by half the spacing plus one grid unit
-  (so rounding of clipped vertices can never create a real overlap),
-* ``holes``: the holes shrunk by the same amount (room for part-in-part).
+* ``outer``: the outline inflated by half the spacing, plus the chord error
+  of flattened arcs and round joins, plus one grid unit (so rounding of
+  clipped vertices can never create a real overlap),
+* ``holes``: the holes shrunk by the same amount (room for part-in-part),
+* ``core``: the true outline grown only by the chord error and one unit (for
+  hide regions, whose margins are applied to the region instead).
+
+Orientations that give the same shape up to a translation (a rectangle turned
+180 degrees, a disc turned any angle) are kept once.
 
 The placement of a copy is a translation of its variant; the reference point
 is the part origin, exactly like :class:`~LeatherCutWorkbench.core.model.Placement`.

@@ -68,7 +68,10 @@ def run_sparrow(parts: Sequence[Part], options: NestOptions,
     report(progress, 0.02, "starting sparrow")
     env = dict(os.environ)
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
-    env["PYTHONPATH"] = root + os.pathsep + env.get("PYTHONPATH", "")
+    # the child sees the same packages as this process (inside FreeCAD the
+    # interpreter differs from the one spyrrow was installed for)
+    paths = [root] + [p for p in sys.path if p and os.path.isdir(p)]
+    env["PYTHONPATH"] = os.pathsep.join(paths + [env.get("PYTHONPATH", "")])
     t0 = time.monotonic()
     proc = subprocess.Popen([python_for_child(), "-m", "LeatherCutWorkbench.core.nesting.sparrow_runner"],
                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -117,9 +120,9 @@ def run_sparrow(parts: Sequence[Part], options: NestOptions,
     dens = area / (length * spec.height) if length > 0 else 0.0
     metrics = {"strip_width_mm": spec.height, "strip_length_mm": round(length, 6),
                "density": round(dens, 6), "item_area_mm2": round(area, 3),
-               "containers": [{"id": "strip", "length_mm": round(length, 6),
+               "per_container": [{"id": "strip", "length_mm": round(length, 6),
                                "parts": len(placements), "density": round(dens, 6)}],
-               "placed": len(placements), "unplaced": len(unplaced), "engine": "sparrow",
+               "placed_count": len(placements), "unplaced_count": len(unplaced), "engine": "sparrow",
                "time_s": round(time.monotonic() - t0, 3), "seed": options.seed}
     return Layout(containers=[c], placements=placements, unplaced=unplaced, metrics=metrics,
                   findings=findings)

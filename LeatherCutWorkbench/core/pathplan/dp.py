@@ -32,6 +32,8 @@ def optimal_entries(inst: Instance, tour: Sequence[int]) -> Tuple[List[int], flo
         choice = [0] * inst.m
         choice[tour[0]] = int(C0[j])
         return choice, float(B[j, j])
+    if len(C0) == 1:
+        return _entries_single_anchor(inst, tour)
     F = inst.block(C0, cands[tour[1]])                  # (c0, c1)
     back: List[np.ndarray] = []
     for i in range(2, m):
@@ -54,6 +56,31 @@ def optimal_entries(inst: Instance, tour: Sequence[int]) -> Tuple[List[int], flo
     choice = [0] * inst.m
     for i, it in enumerate(tour):
         choice[it] = int(cands[it][idx[i]])
+    return choice, cost
+
+
+def _entries_single_anchor(inst: Instance, tour: Sequence[int]) -> Tuple[List[int], float]:
+    """The same DP when the anchor has one candidate (machine zero): the
+    state is a vector per layer."""
+    m = len(tour)
+    cands = inst.cands
+    g0 = int(cands[tour[0]][0])
+    F = inst.to_many(g0, cands[tour[1]])
+    back: List[np.ndarray] = []
+    for i in range(2, m):
+        T = F[:, None] + inst.block(cands[tour[i - 1]], cands[tour[i]])
+        arg = T.argmin(axis=0)
+        F = T[arg, np.arange(T.shape[1])]
+        back.append(arg)
+    close = F + inst.from_many(cands[tour[m - 1]], g0)
+    j = int(close.argmin())
+    cost = float(close[j])
+    choice = [0] * inst.m
+    choice[tour[0]] = g0
+    for i in range(m - 1, 0, -1):
+        choice[tour[i]] = int(cands[tour[i]][j])
+        if i > 1:
+            j = int(back[i - 2][j])
     return choice, cost
 
 

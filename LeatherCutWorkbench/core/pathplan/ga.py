@@ -111,7 +111,7 @@ def order_crossover(p1: Sequence[int], p2: Sequence[int], rng: random.Random) ->
 
 
 def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
-           max_generations: int = 100000, stall_generations: int = 40,
+           max_generations: int = 100000, stall_generations: int = 40, kicks: int = 0,
            progress: Optional[Callable[[float, str], None]] = None) -> SearchResult:
     """Genetic algorithm; returns the best tour found (anchor first)."""
     t_start = time.perf_counter()
@@ -119,7 +119,7 @@ def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
     rng = random.Random(seed)
     near, neard = inst.neighbours(10)
     m = inst.m
-    kicks = max(30, min(m // 2, 1000))
+    kicks = kicks or max(30, min(m // 2, 1000))
     if pop_size <= 0:
         pop_size = 8 if m <= 300 else 6 if m <= 1500 else 4
 

@@ -20,7 +20,6 @@ A lead-in is part of its contour's item (cut first, from its free end), so
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
@@ -192,22 +191,23 @@ def build_items(parts: Sequence[Part], open_chains: Sequence[OpenChain], *,
                                         source=p.id))
     closed_groups = list(range(len(groups)))
     if cut_open_chains:
-        outline_polys = None
+        tree = None
         for ch in open_chains:
             if not ch.segments:
                 continue
             groups.append(_Group(ch.id, "", "open", list(ch.segments), False))
             gi = len(groups) - 1
-            if outline_polys is None:
-                outline_polys = {g: _polygon(groups[g].segments) for g in closed_groups}
+            if tree is None:
+                from shapely import STRtree
+                outline = [_polygon(groups[g].segments).buffer(1e-6) for g in closed_groups]
+                areas = [poly.area for poly in outline]
+                tree = STRtree(outline)
             seg0 = ch.segments[0]
             mid = SPoint(seg0.point_at(seg0.length / 2.0))
-            host, host_area = None, math.inf
-            for g, poly in outline_polys.items():
-                if poly.area < host_area and poly.buffer(1e-6).contains(mid):
-                    host, host_area = g, poly.area
-            if host is not None:
-                groups[host].preds.append(gi)
+            inside = [int(i) for i in tree.query(mid, predicate="within")]
+            if inside:
+                host = min(inside, key=lambda i: (areas[i], i))
+                groups[closed_groups[host]].preds.append(gi)
     elif open_chains:
         findings.append(Finding("info", "open-chains-not-cut",
                                 f"{len(open_chains)} open chain(s) are not cut (cut_open_chains off)"))

@@ -90,7 +90,7 @@ def plan(parts: Sequence[Part], open_chains: Sequence[OpenChain],
     if bad:
         raise LeatherCutError(f"internal error: planned order breaks {bad} precedence rule(s)")
     report(progress, 0.9, "computing lower bound")
-    lb, lb_parts = lower_bound(inst, res.cost, time_budget=options.bound_time)
+    lb, lb_parts = lower_bound(inst, res.cost, time_budget=options.bound_time, max_items_hk=600)
     drawing = inst.tour_cost(list(range(inst.m)), [int(c[0]) for c in inst.cands])
     cut_items: List[CutItem] = []
     cand_base = [int(c[0]) for c in inst.cands]

@@ -15,6 +15,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 
 from ..geometry import Point, Segment, dist, path_length
 from .graph import Graph, oriented
+from .nesting_depth import point_in_loop
 
 
 class Chain:
@@ -88,13 +89,17 @@ def chains(graph: Graph) -> List[Chain]:
 
 
 def classify(chain_list: Sequence[Chain], graph: Graph, node_loops: Dict[int, list],
-             gap_tol: float, loops: Sequence) -> None:
+             gap_tol: float, loops: Sequence, lead_ins: bool = True) -> None:
     """Set ``kind`` and ``contour`` of each still ``open`` chain.  ``node_loops``
     maps a graph node to the loops passing through it (active ones first).  A
     lead-in must touch an active (not excluded) contour and be shorter than it;
     a chain no longer than ``gap_tol`` hanging on a contour is a stub (a line
     running past a corner, or a drawing artefact), never a lead-in: no knife or
-    torch enters through a sub-millimetre lead-in."""
+    torch enters through a sub-millimetre lead-in.  A lead-in starts on the
+    scrap side (outside an outer contour, inside a hole); a line running into
+    the part is a slit and stays an open chain.  With ``lead_ins`` False
+    (pattern pieces: their open lines on the cut layer are slits, not lead-ins)
+    such chains stay open."""
     for ch in chain_list:
         if ch.kind != "open" or ch.a < 0:
             continue
@@ -110,7 +115,12 @@ def classify(chain_list: Sequence[Chain], graph: Graph, node_loops: Dict[int, li
                 ch.kind = "overshoot"
                 continue
             li = node_loops[ch.b][0]
-            if loops[li].excluded or ch.length > loops[li].length:
+            lp = loops[li]
+            if not lead_ins or lp.excluded or ch.length > lp.length:
+                continue
+            # the knife comes from the scrap side: outside an outer contour,
+            # inside a hole (holes run clockwise); a line into the part is a slit
+            if point_in_loop(lp, ch.segs[0].start, graph.tol) != (lp.signed_area < 0):
                 continue
             ch.kind = "lead_in"
             ch.contour = li

@@ -20,21 +20,18 @@ from __future__ import annotations
 
 import gc
 from collections import defaultdict
-from typing import Dict, List, Optional, Set, Tuple
+from typing import Dict, List, Optional, Set
 
-from ..errors import InputError
 from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, Part,
                      Recognition)
 from ..progress import ProgressFn, report
-from .arrangement import arrange
-from .flags import GapProposal, frame_evidence, gap_proposals, missed_contours
+from .build import Group, build
+from .flags import frame_evidence
 from .from_part import reverse
-from .graph import Graph, Piece
-from .leadins import Chain, assign_lead_outs, chains, classify
-from .loops import Loop, edge_key, mark_shared, outline_problems, simple_loop
+from .leadins import Chain, assign_lead_outs, classify
+from .loops import Loop, mark_shared
 from .nesting_depth import LoopIndex, depths, innermost, parents
 from .options import RecogniseOptions
-from .to_part import describe, to_segment
 from .unfold import unfold_part
 
 
@@ -47,24 +44,6 @@ class _Ids:
     def next(self, prefix: str) -> str:
         self.n[prefix] += 1
         return f"{prefix}{self.n[prefix]}"
-
-
-class _Group:
-    """One group of edges recognised on its own."""
-
-    def __init__(self, name: Optional[str], indices: List[int], info=None):
-        self.name = name
-        self.indices = indices
-        self.info = info                 # PieceInfo of a pattern piece, else None
-        self.crossing: List[Tuple[Loop, str]] = []
-        self.overlapping: List[Tuple[Loop, Loop]] = []
-        self.loops: List[Loop] = []
-        self.chains: List[Chain] = []
-        self.gaps: List[GapProposal] = []
-        self.misses: List[GapProposal] = []
-        self.closed_gaps: List[GapProposal] = []
-        self.graph: Optional[Graph] = None
-        self.has_grain = False
 
 
 def recognise(drawing: Drawing, options: RecogniseOptions = RecogniseOptions(),
@@ -98,7 +77,7 @@ def _recognise(drawing: Drawing, options: RecogniseOptions,
         def step(f: float, msg: str, lo=lo, hi=hi) -> None:
             report(progress, lo + (hi - lo) * f, msg)
 
-        _build(drawing, grp, options, rec.findings, step)
+        build(drawing, grp, options, rec.findings, step)
         step(0.8, "nesting depth, lead-ins and flags")
         _emit(drawing, grp, options, ids, rec)
         step(1.0, f"recognised {gi + 1}/{len(groups)} groups")
@@ -107,175 +86,22 @@ def _recognise(drawing: Drawing, options: RecogniseOptions,
 
 
 # ----------------------------------------------------------------------
-def _groups(drawing: Drawing) -> List[_Group]:
+def _groups(drawing: Drawing) -> List[Group]:
     if not drawing.pieces:
-        return [_Group(None, list(range(len(drawing.edges))))]
+        return [Group(None, list(range(len(drawing.edges))))]
     out = []
     seen: Set[int] = set()
     for key, info in drawing.pieces.items():
         idx = list(getattr(info, "edges", info))
-        out.append(_Group(key, idx, info if hasattr(info, "edges") else None))
+        out.append(Group(key, idx, info if hasattr(info, "edges") else None))
         seen.update(idx)
     rest = [i for i in range(len(drawing.edges)) if i not in seen]
     if rest:
-        out.append(_Group(None, rest))
+        out.append(Group(None, rest))
     return out
 
 
-def _build(drawing: Drawing, grp: _Group, options: RecogniseOptions,
-           findings: List[Finding], step) -> None:
-    """Steps 1-4: pieces, graph, gaps, loops and chains of one group."""
-    tol = options.join_tol
-    where = f"{drawing.path}" + (f" piece {grp.name!r}" if grp.name else "")
-    pieces: List[Piece] = []
-    keys: Set[Tuple] = set()
-    short = dups = 0
-    for i in grp.indices:
-        e = drawing.edges[i]
-        if e.src.role == "grain":
-            grp.has_grain = True
-        if e.src.role != "cut":
-            continue
-        try:
-            seg, curve = to_segment(e, options.chord_tol)
-        except InputError as exc:
-            findings.append(Finding("warning", "bad-edge", f"edge skipped: {exc.message}",
-                                    f"{drawing.path}: {exc.source or describe(e)}"))
-            continue
-        if seg.length < tol:
-            short += 1
-            continue
-        k = edge_key(seg, tol)
-        if k in keys:
-            dups += 1
-            continue
-        keys.add(k)
-        pieces.append(Piece(i, seg, curve))
-    if short:
-        findings.append(Finding("info", "short-edges-dropped",
-                                f"{short} cut edges shorter than the join tolerance "
-                                f"({tol} mm) dropped", where))
-    if dups:
-        findings.append(Finding("info", "duplicate-edges-dropped",
-                                f"{dups} duplicated cut edges dropped", where))
-    step(0.2, "joining end points")
-    graph = Graph(pieces, tol, options.chord_tol)
-    grp.graph = graph
-    graph.split_at_dangling_ends(options.gap_tol)
-    graph.peel()
-    # a joint inside an open chain may touch an edge (two lead-ins meeting a
-    # contour at one point): split there too and peel again
-    if graph.split_at_nodes(graph.chain_interior_nodes(), 0.0)[0]:
-        graph.peel()
-    chain_list = chains(graph)
-    grp.gaps = gap_proposals(chain_list, graph, options.gap_tol)
-    for gp in grp.gaps:
-        for ch in gp.chains:
-            ch.kind = "gap"
-    grp.misses = missed_contours(chain_list, graph, options.gap_tol)
-    for gp in grp.misses:
-        gp.chains[0].kind = "gap"
-    if options.close_gaps and (grp.gaps or grp.misses):
-        for k, gp in enumerate(grp.gaps + grp.misses):
-            for b in gp.bridges:
-                graph.add(Piece(-1 - k, b))       # bridges carry source -1 - k
-            grp.closed_gaps.append(gp)
-        graph.split_at_dangling_ends(0.0)          # a bridge may end on an edge
-        graph.peel()
-        chain_list = chains(graph)
-    grp.chains = chain_list
-
-    step(0.4, "building contours")
-    cluster = 0
-    comps = graph.components()
-    for ci, comp in enumerate(comps):
-        if graph.is_simple_cycle(comp):
-            grp.loops.append(simple_loop(graph, comp))
-            continue
-        step(0.4 + 0.4 * ci / len(comps), "splitting common-edge layouts into regions")
-        try:
-            cells, leftovers = arrange(graph, comp, cluster, options.chord_tol, options.fuzzy,
-                                      lambda i: _ident(drawing, i))
-        except Exception as exc:  # noqa: BLE001 - OCC failures surface as many types
-            findings.append(Finding(
-                "warning", "arrangement-failed",
-                f"FreeCAD could not split a group of {len(comp)} connected edges into regions "
-                f"({type(exc).__name__}: {exc}); its edges are reported as open chains",
-                where))
-            for i in comp:
-                pc = graph.pieces[i]
-                grp.chains.append(Chain([pc.seg], -1, -1, [pc.src]))
-            continue
-        cluster += 1
-        grp.loops.extend(_with_evidence(cells, options.gap_tol))
-        for seg in leftovers:
-            ch = Chain([seg], -1, -1, [])
-            grp.chains.append(ch)
-    for lp in grp.loops:
-        real = [s for s in lp.srcs if s >= 0]
-        lp.order = (min(real) if real else 1 << 60, lp.bbox[1], lp.bbox[0])
-    grp.loops.sort(key=lambda lp: lp.order)
-    for lp in grp.loops:
-        lp.chord_tol = options.chord_tol
-    _drop_duplicate_loops(grp, tol, findings, where)
-    grp.crossing, grp.overlapping = outline_problems(grp.loops)
-
-
-def _with_evidence(cells, gap_tol: float) -> List[Loop]:
-    """Loops of arrangement cells with their over-recognition evidence set."""
-    out = []
-    for c in cells:
-        lp = c.loop
-        ev = []
-        if not c.drawn and any(cells[j].drawn for j in c.neighbours):
-            ev.append("none of its sides was drawn for it (each is part of a longer line or "
-                      "of another outline) while the regions around it were drawn as their "
-                      "own outlines")
-        width = 2.0 * lp.area / max(lp.length, 1e-12)
-        if width < gap_tol:
-            ev.append(f"a sliver {width:.3g} mm wide on average between nearly coincident lines")
-        if c.pinwheel:
-            ev.append("every edge is shared and each corner is a T-junction turning off a "
-                      "line of a neighbouring part (the gap left between parts around it)")
-        if ev:
-            lp.auto_over = True
-            if c.all_shared:
-                ev.append("every edge is shared with a neighbouring part")
-        lp.evidence = ev
-        out.append(lp)
-    return out
-
-
-def _drop_duplicate_loops(grp: _Group, tol: float, findings: List[Finding], where: str) -> None:
-    """Closed outlines drawn twice (not edge by edge identical) are kept once:
-    same box, and no point of one farther than 10 x join tolerance from the
-    other (shapely's Hausdorff distance on the flattened outlines)."""
-    import shapely
-
-    q = max(tol * 10, 1e-6)
-    buckets: Dict[Tuple, List[Loop]] = defaultdict(list)
-    keep = []
-    for lp in grp.loops:
-        k = tuple(round(v / q) for v in lp.bbox)
-        twin = None
-        if lp.cluster is None and buckets.get(k):
-            here = shapely.LineString(lp.polygon() + lp.polygon()[:1])
-            for other in buckets[k]:
-                there = shapely.LineString(other.polygon() + other.polygon()[:1])
-                if shapely.hausdorff_distance(here, there) <= q:
-                    twin = other
-                    break
-        if twin is not None:
-            findings.append(Finding("info", "duplicate-contour",
-                                    "a closed outline drawn twice was kept once", where))
-            continue
-        buckets[k].append(lp)
-        keep.append(lp)
-    grp.loops = keep
-
-
-# ----------------------------------------------------------------------
-def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
+def _emit(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
           rec: Recognition) -> None:
     """Steps 5-7 for one group, appending to ``rec``."""
     loops = grp.loops
@@ -295,7 +121,7 @@ def _emit(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
                             key=lambda p: _num(p.id)))
 
 
-def _outline_findings(grp: _Group, rec: Recognition, path: str) -> None:
+def _outline_findings(grp: Group, rec: Recognition, path: str) -> None:
     for lp, why in grp.crossing:
         rec.findings.append(Finding("warning", "self-intersecting-contour",
                                     f"contour {lp.contour_id} crosses itself ({why}); it is cut "
@@ -343,7 +169,7 @@ def _decide(loops: List[Loop], options: RecogniseOptions):
     return par, depth
 
 
-def _make_parts(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _Ids,
+def _make_parts(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
                 rec: Recognition, par, depth, layer) -> Dict[int, Part]:
     """Over flags, then one part per even-depth (or excluded) loop with the
     odd-depth loops inside it as holes.  Returns loop index -> its part."""
@@ -376,7 +202,7 @@ def _make_parts(drawing: Drawing, grp: _Group, options: RecogniseOptions, ids: _
     return part_of_loop
 
 
-def _attach_chains(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
+def _attach_chains(grp: Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
                    part_of_loop: Dict[int, Part], layer) -> Dict[int, List[int]]:
     """Lead-ins / lead-outs onto their parts, the other chains to open chains.
     Returns graph node -> loops through it (active loops first)."""
@@ -385,7 +211,8 @@ def _attach_chains(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recog
     for i in sorted(range(len(loops)), key=lambda i: loops[i].excluded):
         for n in loops[i].nodes:
             node_loops[n].append(i)
-    classify(grp.chains, grp.graph, node_loops, options.gap_tol, loops)
+    classify(grp.chains, grp.graph, node_loops, options.gap_tol, loops,
+             lead_ins=grp.name is None)
     by_loop: Dict[int, List[Chain]] = defaultdict(list)
     for ch in grp.chains:
         if ch.kind == "lead_in":
@@ -406,7 +233,7 @@ def _attach_chains(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recog
     return node_loops
 
 
-def _under_flags(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
+def _under_flags(grp: Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
                  node_loops: Dict[int, List[int]]) -> None:
     """Flags for gaps, chains missing a contour and stubs (accepted when closed)."""
     loops = grp.loops
@@ -442,7 +269,7 @@ def _under_flags(grp: _Group, options: RecogniseOptions, ids: _Ids, rec: Recogni
                               accepted=True if options.close_gaps else None))
 
 
-def _unfold(grp: _Group, line, part_of_loop: Dict[int, Part], depth: List[int],
+def _unfold(grp: Group, line, part_of_loop: Dict[int, Part], depth: List[int],
             options: RecogniseOptions, ids: _Ids, rec: Recognition, path: str) -> None:
     """Unfold the top-level parts of a half piece about its fold line."""
     where = f"{path} piece {grp.name!r}"
@@ -465,7 +292,7 @@ def _unfold(grp: _Group, line, part_of_loop: Dict[int, Part], depth: List[int],
                                         where))
 
 
-def _place_marks(drawing: Drawing, grp: _Group, loops: List[Loop],
+def _place_marks(drawing: Drawing, grp: Group, loops: List[Loop],
                  part_of_loop: Dict[int, Part], depth: List[int], tol: float,
                  rec: Recognition) -> None:
     if grp.info is not None:
@@ -517,7 +344,7 @@ def _layer_of(drawing: Drawing):
     return layer
 
 
-def _piece_fields(part: Part, drawing: Drawing, grp: _Group) -> None:
+def _piece_fields(part: Part, drawing: Drawing, grp: Group) -> None:
     """Name, quantity and allowed rotations of a pattern piece's part: with a
     grain line the piece may only turn by 0 or 180 degrees (grain kept parallel)."""
     info = grp.info
@@ -530,14 +357,6 @@ def _piece_fields(part: Part, drawing: Drawing, grp: _Group) -> None:
     part.quantity = max(1, int(getattr(info, "quantity", 1) or 1))
     if getattr(info, "grain_angle", None) is not None or grp.has_grain:
         part.rotations = [0.0, 180.0]
-
-
-def _ident(drawing: Drawing, i: int):
-    """The drawn entity of edge ``i``: its DXF handle, else the edge itself."""
-    if i < 0:
-        return ("bridge", i)
-    h = drawing.edges[i].src.handle
-    return ("h", h) if h else ("e", i)
 
 
 def _num(ident: str) -> int:
