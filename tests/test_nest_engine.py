@@ -273,3 +273,25 @@ def test_two_hides_in_one_dxf_fill_in_order(tmp_path):
     for p in lay.placements:
         by[p.container] = by.get(p.container, 0) + 1
     assert by["hide1"] == 4 and by["hide2"] == 2 and lay.unplaced == []
+
+
+def test_nfp_of_discs_covers_every_overlapping_position():
+    # regression: rounding left a degenerate island inside the NFP of two discs, and a
+    # small disc was placed inside a big one (the checker caught it)
+    from LeatherCutWorkbench.core.nesting.nfp import solid_nfp
+    from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
+    import pyclipper
+    scale = 1e4
+    big, small = (piece_from_part(disc(n, r), 0.05, 30, [0]) for n, r in (("D", 18), ("d", 12)))
+    vb, vs = make_variants([big, small], scale, 1.0, 0.05)[:2]
+    for a, b, ra, rb in ((vb, vs, 18, 12), (vs, vb, 12, 18)):
+        nfp = solid_nfp(a.outer, b.outer)
+        assert len(nfp) == 1 and pyclipper.Orientation(nfp[0])
+        # centre of a at (ra, ra), of b at (rb, rb) relative to their origins
+        for k in range(200):
+            ang = 2 * math.pi * k / 200
+            for frac in (0.0, 0.2, 0.5, 0.9, 0.99):
+                d = frac * (ra + rb) * scale
+                t = (int(ra * scale + d * math.cos(ang) - rb * scale),
+                     int(ra * scale + d * math.sin(ang) - rb * scale))
+                assert pyclipper.PointInPolygon(t, nfp[0]) == 1

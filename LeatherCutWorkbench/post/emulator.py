@@ -204,7 +204,8 @@ class FakeController:
                 if self._waiting_for_full_buffer():
                     break
                 if not self._planner_accepts():
-                    self._frozen_until = 0.0      # a line waits for the queue: move on
+                    if not self._queue or self._needs_empty_queue():
+                        self._frozen_until = 0.0  # an output/dwell line waits: move on
                     break
                 self._next_time = time.monotonic() + self.line_time
                 self._process_one()
@@ -217,8 +218,11 @@ class FakeController:
         """Run queued motion blocks, one per ``block_time``."""
         nxt = self.gcode_lines + 1
         for f in self.faults:
+            # the long move starts once the queue has room for every line up to
+            # the fault, so the fault line still gets in behind the queued ones
             if f.long_move and not f.fired and not hasattr(f, "_moving") \
-                    and f.at_line - self.planner_blocks < nxt <= f.at_line:
+                    and f.at_line - self.planner_blocks < nxt <= f.at_line \
+                    and len(self._queue) + (f.at_line - nxt) < self.planner_blocks:
                 f._moving = True
                 self._frozen_until = time.monotonic() + 3.0
         if time.monotonic() < self._frozen_until:
@@ -230,15 +234,22 @@ class FakeController:
             self._mpos = end
             self._next_exec = time.monotonic() + self.block_time
 
+    def _next_block(self) -> str:
+        cut = [i for i in (self._rx.find(b"\n"), self._rx.find(b"\r")) if i >= 0]
+        return strip_line(bytes(self._rx[:min(cut)]).decode("ascii", "replace"))
+
+    def _needs_empty_queue(self) -> bool:
+        block = self._next_block()
+        return block.startswith("$") or any(m in block for m in ("M3", "M4", "M5", "M7", "M8",
+                                                                  "M9", "G4"))
+
     def _planner_accepts(self) -> bool:
         """Whether the next received line may be processed now: a motion line
         needs room in the queue, an output/dwell line an empty queue."""
         if not self.planner_blocks or self._check:
             return True
-        cut = [i for i in (self._rx.find(b"\n"), self._rx.find(b"\r")) if i >= 0]
-        block = strip_line(bytes(self._rx[:min(cut)]).decode("ascii", "replace"))
-        if block.startswith("$") or any(m in block for m in ("M3", "M4", "M5", "M7", "M8",
-                                                              "M9", "G4")):
+        block = self._next_block()
+        if self._needs_empty_queue():
             return not self._queue
         if any(a in block for a in "XYZABC"):
             if not self._queue:

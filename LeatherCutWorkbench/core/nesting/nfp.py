@@ -78,8 +78,13 @@ def inner_fit(region_outer: IntPath, b_outer: IntPath) -> List[IntPath]:
     """Translations of B that keep it inside the simple CCW ring ``region_outer``."""
     nb = _neg(b_outer)
     sweep = pyclipper.MinkowskiSum(nb, region_outer, True)
+    # grow the swept band by two grid units: rounding slivers left inside it must
+    # not become (infeasible) free positions
+    off = pyclipper.PyclipperOffset()
+    off.AddPaths(sweep, pyclipper.JT_MITER, pyclipper.ET_CLOSEDPOLYGON)
+    band = off.Execute(2.0)
     inside = _shift(region_outer, -b_outer[0][0], -b_outer[0][1])
-    return difference([inside], sweep)
+    return difference([inside], band)
 
 
 def pair_nfp(a: Variant, b: Variant) -> List[IntPath]:
