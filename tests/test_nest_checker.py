@@ -106,3 +106,24 @@ def test_rejects_bookkeeping_errors():
     assert "copy index outside quantity" in text
     assert "x#0: unknown part" in text
     assert "unknown container 'nowhere'" in text
+
+
+def test_safety_net_moves_rejected_placements_to_unplaced():
+    from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, _drop_invalid
+    from LeatherCutWorkbench.core.nesting.checker import check_layout as check
+    parts = [rect("a", 40, 50, q=2)]
+    layout = Layout(containers=[Container(id="strip", kind="strip", outline=rectangle(0, 0, 100, 50))],
+                    placements=[Placement("a", 0, "strip", 0, 0), Placement("a", 1, "strip", 30, 0)])
+    opts = NestOptions(container=ContainerSpec.strip(50))
+    problems = check(parts, layout)
+    _drop_invalid(parts, layout, problems, opts)
+    assert len(layout.placements) == 1 and len(layout.unplaced) == 1
+    kept = layout.placements[0]
+    assert {(kept.part_id, kept.copy)} | set(layout.unplaced) == {("a", 0), ("a", 1)}
+    assert any(f.code == "invalid-placement-removed" and f.level == "error" for f in layout.findings)
+    # figures are recomputed for what is left: one 40 x 50 part, strip up to its right edge
+    length = kept.x + 40
+    assert layout.metrics["strip_length_mm"] == length
+    assert layout.metrics["density"] == round(2000 / (length * 50), 6)
+    assert layout.metrics["placed_count"] == 1 and layout.metrics["unplaced_count"] == 1
+    assert check(parts, layout) == []

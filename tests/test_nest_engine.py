@@ -295,3 +295,20 @@ def test_nfp_of_discs_covers_every_overlapping_position():
                 t = (int(ra * scale + d * math.cos(ang) - rb * scale),
                      int(ra * scale + d * math.sin(ang) - rb * scale))
                 assert pyclipper.PointInPolygon(t, nfp[0]) == 1
+
+
+def test_convex_fast_path_matches_general_minkowski_sum():
+    from LeatherCutWorkbench.core.nesting import nfp
+    import pyclipper
+    a = [[0, 0], [100, 0], [130, 60], [20, 90]]
+    b = [[0, 0], [40, 10], [10, 50]]
+    assert nfp.is_convex(a) and nfp.is_convex(b)
+    assert not nfp.is_convex([[0, 0], [10, 0], [10, 10], [5, 3], [0, 10]])
+    fast = nfp.solid_nfp(a, b)
+    nb = [[-x, -y] for x, y in b]
+    general = nfp.union(list(pyclipper.MinkowskiSum(nb, a, True)) +
+                        [[[x + nb[0][0], y + nb[0][1]] for x, y in a]])
+    assert len(fast) == 1
+    assert pyclipper.Area(fast[0]) == pytest.approx(sum(pyclipper.Area(p) for p in general))
+    diff = nfp.difference(general, fast) + nfp.difference(fast, general)
+    assert sum(abs(pyclipper.Area(p)) for p in diff) < 1.0

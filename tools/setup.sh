@@ -42,5 +42,12 @@ fi
 site="$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
 echo "/usr/lib/freecad-python3/lib" > "$site/leathercut-freecad.pth"
 
+# The real LinuxCNC G-code interpreter for the post-processor tests, unpacked
+# privately (LinuxCNC itself is not installed). Optional: a failure only warns.
+if [ ! -x "${LEATHERCUT_RS274_DIR:-$HOME/.cache/leathercut/rs274}/root/usr/bin/rs274" ]; then
+  echo "setup: fetching the LinuxCNC rs274 interpreter for the post-processor tests"
+  bash "$here/tools/get_rs274.sh" || echo "setup: warning: could not fetch rs274 (tests/test_post_rs274.py needs it)" >&2
+fi
+
 # Link the workbench into FreeCAD's user Mod folder (FreeCAD computes the folder).
 "$venv/bin/python" "$here/tools/install_workbench.py"

@@ -5,36 +5,12 @@ Documented in docs/CLI.md (section ``plan``)."""
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
-import sys
 from typing import Any, Dict
 
 from . import Report, add_common_options
 from ..core.errors import InputError
-
-_EARLIER = ("inspect_cmd", "recognise_cmd", "nest_cmd")
-
-
-def _earlier_modules():
-    """Earlier stages' CLI modules that exist (added by other issues)."""
-    mods = []
-    for name in _EARLIER:
-        try:
-            mods.append(importlib.import_module(f".{name}", __package__))
-        except ImportError:
-            continue
-    return mods
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
-    return v
+from .stages import add_stage_options, job_options, positive, progress_bar
 
 
 def _angle(text: str):
@@ -66,9 +42,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     g.add_argument(f"--{pre}method", dest="plan_method", choices=("ga", "aco", "nn"), default="ga",
                    help="order search: ga = genetic algorithm (default), aco = max-min ant system, "
                         "nn = nearest neighbour (fast baseline)")
-    g.add_argument(f"--{pre}time", dest="plan_time", type=_positive, default=10.0, metavar="S",
+    g.add_argument(f"--{pre}time", dest="plan_time", type=positive, default=10.0, metavar="S",
                    help="planning time budget in seconds (default 10; stops earlier when converged)")
-    g.add_argument("--entry-spacing", dest="plan_entry_spacing", type=_positive, default=20.0,
+    g.add_argument("--entry-spacing", dest="plan_entry_spacing", type=positive, default=20.0,
                    metavar="MM", help="entry candidates every MM mm along edges, plus every vertex "
                                       "(default 20)")
     g.add_argument("--lift-angle", dest="plan_lift_angle", type=_angle, default=None,
@@ -78,11 +54,11 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     g.add_argument("--home", dest="plan_home", type=_point, default=None, metavar="X,Y",
                    help="machine zero in drawing coordinates, mm (default 0,0, or minus the "
                         "machine profile's origin)")
-    g.add_argument("--rapid-speed", dest="plan_rapid_speed", type=_positive, default=None,
+    g.add_argument("--rapid-speed", dest="plan_rapid_speed", type=positive, default=None,
                    metavar="MM_MIN", help="travel speed for the time estimate (default 20000 mm/min)")
-    g.add_argument("--cut-speed", dest="plan_cut_speed", type=_positive, default=None,
+    g.add_argument("--cut-speed", dest="plan_cut_speed", type=positive, default=None,
                    metavar="MM_MIN", help="cutting speed for the time estimate (default 6000 mm/min)")
-    g.add_argument("--accel", dest="plan_accel", type=_positive, default=None, metavar="MM_S2",
+    g.add_argument("--accel", dest="plan_accel", type=positive, default=None, metavar="MM_S2",
                    help="acceleration for the time estimate (default 1000 mm/s^2)")
     g.add_argument("--no-open-chains", dest="plan_no_open_chains", action="store_true",
                    help="do not cut open chains (lines that are neither contours nor lead-ins)")
@@ -123,45 +99,19 @@ def register(subparsers) -> None:
                     "travel against the drawing order, nearest neighbour and a lower bound.")
     p.add_argument("file", metavar="FILE", help="DXF drawing")
     add_common_options(p)
-    for mod in _earlier_modules():
-        mod.add_options(p, primary=False)
+    add_stage_options(p, before="plan_cmd")
     add_options(p, primary=True)
     p.set_defaults(func=run)
 
 
-def _bar():
-    if not sys.stderr.isatty():
-        return None
-    state = {"last": -1}
-
-    def bar(frac: float, msg: str) -> bool:
-        pct = int(frac * 100)
-        if pct != state["last"]:
-            state["last"] = pct
-            sys.stderr.write(f"\r[{'#' * (pct // 4):<25}] {pct:3d}% {msg[:50]:<50}")
-            if pct >= 100:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-        return True
-    return bar
-
-
 def run(args: argparse.Namespace) -> Report:
-    from ..core.job import JobOptions, run_job
+    from ..core.job import run_job
 
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
-    jo = JobOptions(plan=options_from_args(args))
-    for mod in _earlier_modules():
-        val = mod.options_from_args(args)
-        name = mod.__name__.rsplit(".", 1)[-1]
-        if name == "inspect_cmd":
-            jo.import_ = val
-        elif name == "recognise_cmd":
-            jo.recognise = val
-        else:
-            jo.nest = val
-    result = run_job(args.file, jo, None if args.json else _bar())
+    jo = job_options(args, before="plan_cmd")
+    jo.plan = options_from_args(args)
+    result = run_job(args.file, jo, None if args.json else progress_bar())
     data = report_dict(args.file, result)
     return Report(data=data, text=report_text(data))
 

@@ -9,39 +9,15 @@ refused job leaves no output file.  Documented in docs/CLI.md (``post``).
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
-from typing import Any, List
+from typing import Any
 
 from . import Report, add_common_options
 from ..core.errors import InputError
+from .stages import add_stage_options, job_options, non_negative
 
 DEFAULT_MACHINE = "grblhal_tangential"
 FORMATS = ("gcode", "hpgl", "dxf")
-_EARLIER = ("inspect_cmd", "recognise_cmd", "nest_cmd", "plan_cmd")
-
-
-def earlier_modules() -> List[Any]:
-    """CLI modules of the earlier stages that exist."""
-    mods = []
-    for name in _EARLIER:
-        try:
-            mods.append(importlib.import_module(f".{name}", __package__))
-        except ImportError:
-            continue
-    return mods
-
-
-def _non_negative(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0: {text!r}")
-    return v
-
-
 def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     """Post-processing options (``--machine`` is shared with ``send``)."""
     g = parser.add_argument_group("post-processing")
@@ -57,7 +33,7 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="file to write (not created when the safety check refuses the job)")
     g.add_argument("--line-numbers", dest="post_line_numbers", action="store_true",
                    default=None, help="G-code: N word on every block")
-    g.add_argument("--overcut", dest="post_overcut", type=_non_negative, metavar="MM",
+    g.add_argument("--overcut", dest="post_overcut", type=non_negative, metavar="MM",
                    help="cut this many mm past the start of closed contours "
                         "(default: the profile's overcut)")
 
@@ -77,8 +53,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "words first; a refused job writes nothing.")
     p.add_argument("file", metavar="FILE", help="DXF drawing to cut")
     add_common_options(p)
-    for mod in earlier_modules():
-        mod.add_options(p, primary=False)
+    add_stage_options(p, before="end")
     add_options(p, primary=True)
     p.set_defaults(func=run)
 
@@ -86,22 +61,11 @@ def register(sub: argparse._SubParsersAction) -> None:
 def plan_drawing(args: argparse.Namespace, profile) -> Any:
     """Run the earlier stages on ``args.file`` with their CLI options; returns
     the JobResult (``.plan`` is the CutPlan)."""
-    from ..core.job import JobOptions, run_job
+    from ..core.job import run_job
 
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
-    opts = JobOptions()
-    for mod in earlier_modules():
-        name = mod.__name__.rsplit(".", 1)[-1]
-        if name == "plan_cmd":
-            try:
-                opts.plan = mod.options_from_args(args, profile)
-            except TypeError:
-                opts.plan = mod.options_from_args(args)
-        else:
-            attr = {"inspect_cmd": "import_", "recognise_cmd": "recognise",
-                    "nest_cmd": "nest"}[name]
-            setattr(opts, attr, mod.options_from_args(args))
+    opts = job_options(args, before="end", machine=profile)
     return run_job(args.file, opts)
 
 

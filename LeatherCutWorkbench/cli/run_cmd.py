@@ -13,13 +13,11 @@ import argparse
 import json
 import os
 
-from . import Report, add_common_options
-from . import inspect_cmd, nest_cmd, plan_cmd, recognise_cmd
+from . import Report, add_common_options, post_cmd
 from ..core.errors import InputError
-from ..core.job import JobOptions, run_job
+from ..core.job import run_job
 from ..core.job_report import job_report
-
-DEFAULT_MACHINE = "grblhal_tangential"
+from .stages import add_stage_options, job_options, progress_bar
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -30,26 +28,10 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("file", metavar="FILE", help="DXF drawing to cut")
     p.add_argument("-o", "--output", dest="outdir", required=True, metavar="OUTDIR",
                    help="folder for job.nc, preview.svg and report.json (created if missing)")
-    p.add_argument("--machine", default=DEFAULT_MACHINE, metavar="NAME_OR_FILE",
-                   help=f"machine profile for job.nc (default {DEFAULT_MACHINE}; "
-                        "see docs/MACHINES.md)")
     add_common_options(p)
-    inspect_cmd.add_options(p, primary=False)
-    recognise_cmd.add_options(p, primary=False)
-    nest_cmd.add_options(p, primary=False)
-    plan_cmd.add_options(p, primary=False)
+    add_stage_options(p, before="end")
+    post_cmd.add_options(p, primary=False)
     p.set_defaults(func=run)
-
-
-def job_options_from_args(args: argparse.Namespace, machine=None) -> JobOptions:
-    """Collect every stage's options from parsed arguments."""
-    return JobOptions(
-        import_=inspect_cmd.options_from_args(args),
-        recognise=recognise_cmd.options_from_args(args),
-        nest=nest_cmd.options_from_args(args),
-        plan=plan_cmd.options_from_args(args, machine) if machine is not None
-        else plan_cmd.options_from_args(args),
-    )
 
 
 def run(args: argparse.Namespace) -> Report:
@@ -58,8 +40,13 @@ def run(args: argparse.Namespace) -> Report:
 
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
-    profile = load_profile(args.machine)
-    result = run_job(args.file, job_options_from_args(args, profile))
+    profile = load_profile(args.post_machine)
+    if not profile.is_gcode:
+        raise InputError(f"profile {profile.name} is for {profile.dialect}, but run writes G-code "
+                         f"(job.nc); use 'leathercut post --format {profile.dialect}'",
+                         source=args.post_machine)
+    result = run_job(args.file, job_options(args, before="end", machine=profile),
+                     None if args.json else progress_bar())
     text_nc = gcode.export(result.plan, profile)
     outdir = args.outdir
     try:

@@ -19,18 +19,9 @@ import time
 from . import Report, add_common_options
 from ..core.errors import InputError
 from . import post_cmd
+from .stages import add_stage_options, positive
 
 GCODE_EXT = (".nc", ".ngc", ".gcode", ".tap", ".cnc", ".txt")
-
-
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
-    return v
 
 
 def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
@@ -54,7 +45,7 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="job journal (default FILE.journal next to the job)")
     g.add_argument("--no-home", dest="send_no_home", action="store_true",
                    help="never send $H; refuse when the controller is locked in Alarm")
-    g.add_argument("--link-timeout", dest="send_link_timeout", type=_positive, default=3.0,
+    g.add_argument("--link-timeout", dest="send_link_timeout", type=positive, default=3.0,
                    metavar="S", help="no status reply for S seconds = link lost (default 3)")
 
 
@@ -66,8 +57,7 @@ def register(sub: argparse._SubParsersAction) -> None:
                                    "error, alarm or lost link; resume from a segment.")
     p.add_argument("file", metavar="FILE", help="DXF drawing or G-code file (.nc/.ngc/.gcode)")
     add_common_options(p)
-    for mod in post_cmd.earlier_modules():
-        mod.add_options(p, primary=False)
+    add_stage_options(p, before="end")
     post_cmd.add_options(p, primary=False)
     add_options(p, primary=True)
     p.set_defaults(func=run)

@@ -92,8 +92,8 @@ def _drop_invalid(parts: Sequence[Part], layout: Layout, problems: List[str],
     if rest:
         from ..errors import LeatherCutError
         raise LeatherCutError("nesting produced an invalid layout: " + "; ".join(rest[:3]))
-    layout.metrics["placed_count"] = len(layout.placements)
-    layout.metrics["unplaced_count"] = len(layout.unplaced)
+    from .engine import fill_metrics
+    fill_metrics(parts, layout, options)
 
 
 def placed_parts(parts: Sequence[Part], layout: Layout) -> List[Part]:

@@ -163,10 +163,10 @@ def _run_pool(problem: Problem, copies: List[int], options: NestOptions, n: int,
 def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, order,
                placements, options: NestOptions, scale: float,
                hides: List[Container]) -> Layout:
+    """Placements in grid units -> Layout with containers and figures."""
     spec = options.container
-    by_key = {p.id: p for p in parts}
     copy_no: Dict[int, int] = {}
-    rows = []
+    rows: List[Tuple[int, Placement]] = []
     unplaced: List[Tuple[str, int]] = []
     for (si, b, vi, tx, ty) in placements:
         t = order[si][0]
@@ -179,76 +179,86 @@ def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, orde
         v = variants[vi]
         rows.append((b, Placement(part_id=key, copy=k, container="", x=tx / scale, y=ty / scale,
                                   angle=v.angle, mirrored=v.mirrored)))
-    polys = {p.id: part_polygon(p, options.chord_tol) for p in parts}
-    used_bins = sorted({b for b, _ in rows})
     containers: List[Container] = []
     names: Dict[int, str] = {}
-    placed_area: Dict[int, float] = {b: 0.0 for b in used_bins}
-    extent: Dict[int, float] = {b: 0.0 for b in used_bins}
+    if spec.kind == "strip":
+        containers.append(Container(id="strip", kind="strip", outline=rectangle(0, 0, 0, spec.height)))
+        names[0] = "strip"
+    elif spec.kind == "sheet":
+        for n, b in enumerate(sorted({b for b, _ in rows})):
+            names[b] = f"sheet{n + 1}"
+            containers.append(Container(id=names[b], kind="sheet",
+                                        outline=rectangle(0.0, 0.0, spec.width, spec.height)))
+    else:
+        for b, c in enumerate(hides):
+            names[b] = c.id
+            containers.append(c)
     for b, pl in rows:
+        pl.container = names[b]
+    layout = Layout(containers=containers, placements=[pl for _, pl in rows], unplaced=unplaced,
+                    metrics={}, findings=[])
+    fill_metrics(parts, layout, options)
+    return layout
+
+
+def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) -> None:
+    """(Re)compute the layout's figures from its placements: strip length and
+    density (the strip outline is set to the used length), sheet and hide
+    utilisation, per-container figures, counts; an ``unplaced-parts`` warning."""
+    spec = options.container
+    polys = {p.id: part_polygon(p, options.chord_tol) for p in parts}
+    area: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
+    extent: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
+    count: Dict[str, int] = {c.id: 0 for c in layout.containers}
+    for pl in layout.placements:
         g = placed_polygon(polys[pl.part_id], pl.x, pl.y, pl.angle, pl.mirrored)
-        placed_area[b] += g.area
-        extent[b] = max(extent[b], g.bounds[2])
-    metrics: Dict[str, object] = {}
+        area[pl.container] += g.area
+        extent[pl.container] = max(extent[pl.container], g.bounds[2])
+        count[pl.container] += 1
+    metrics = layout.metrics
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
-        length = (extent.get(0, 0.0) + options.margin) if rows else 0.0
-        c = Container(id="strip", kind="strip", outline=rectangle(0.0, 0.0, length, spec.height))
-        containers.append(c)
-        names[0] = c.id
-        area = placed_area.get(0, 0.0)
-        dens = area / (length * spec.height) if length > 0 else 0.0
+        c = layout.containers[0]
+        length = extent[c.id] + options.margin if count[c.id] else 0.0
+        c.outline = rectangle(0.0, 0.0, length, spec.height)
+        dens = area[c.id] / (length * spec.height) if length > 0 else 0.0
         metrics.update({"strip_width_mm": spec.height, "strip_length_mm": round(length, 6),
-                        "density": round(dens, 6), "item_area_mm2": round(area, 3)})
-        per.append({"id": c.id, "length_mm": round(length, 6), "parts": len(rows),
+                        "density": round(dens, 6), "item_area_mm2": round(area[c.id], 3)})
+        per.append({"id": c.id, "length_mm": round(length, 6), "parts": count[c.id],
                     "density": round(dens, 6)})
     elif spec.kind == "sheet":
-        total_used = 0.0
-        for n, b in enumerate(used_bins):
-            c = Container(id=f"sheet{n + 1}", kind="sheet",
-                          outline=rectangle(0.0, 0.0, spec.width, spec.height))
-            containers.append(c)
-            names[b] = c.id
-            sa = spec.width * spec.height
-            total_used += placed_area[b]
-            per.append({"id": c.id, "parts": sum(1 for bb, _ in rows if bb == b),
-                        "part_area_mm2": round(placed_area[b], 3),
-                        "utilisation": round(placed_area[b] / sa, 6),
-                        "used_length_mm": round(extent[b] + options.margin, 3)})
-        n_sheets = len(used_bins)
-        metrics.update({"sheets": n_sheets, "sheet_size_mm": [spec.width, spec.height],
-                        "utilisation": round(total_used / (n_sheets * spec.width * spec.height), 6)
-                        if n_sheets else 0.0, "item_area_mm2": round(total_used, 3)})
+        sa = spec.width * spec.height
+        for c in layout.containers:
+            per.append({"id": c.id, "parts": count[c.id], "part_area_mm2": round(area[c.id], 3),
+                        "utilisation": round(area[c.id] / sa, 6),
+                        "used_length_mm": round(extent[c.id] + options.margin, 3)})
+        n = len(layout.containers)
+        total = sum(area.values())
+        metrics.update({"sheets": n, "sheet_size_mm": [spec.width, spec.height],
+                        "utilisation": round(total / (n * sa), 6) if n else 0.0,
+                        "item_area_mm2": round(total, 3)})
     else:
         total_used = total_net = total_gross = 0.0
-        for b, c in enumerate(hides):
-            containers.append(c)
-            names[b] = c.id
+        for c in layout.containers:
             na, ga = net_area(c), Polygon(c.outline).area
-            pa = placed_area.get(b, 0.0)
-            total_used += pa
+            total_used += area[c.id]
             total_net += na
             total_gross += ga
-            per.append({"id": c.id, "parts": sum(1 for bb, _ in rows if bb == b),
-                        "part_area_mm2": round(pa, 3), "net_area_mm2": round(na, 3),
-                        "gross_area_mm2": round(ga, 3), "utilisation": round(pa / na, 6) if na else 0.0,
-                        "utilisation_gross": round(pa / ga, 6) if ga else 0.0,
+            per.append({"id": c.id, "parts": count[c.id], "part_area_mm2": round(area[c.id], 3),
+                        "net_area_mm2": round(na, 3), "gross_area_mm2": round(ga, 3),
+                        "utilisation": round(area[c.id] / na, 6) if na else 0.0,
+                        "utilisation_gross": round(area[c.id] / ga, 6) if ga else 0.0,
                         "defects": len(c.defects), "zones": len(c.zones)})
-        metrics.update({"hides": len(hides),
+        metrics.update({"hides": len(layout.containers),
                         "utilisation": round(total_used / total_net, 6) if total_net else 0.0,
                         "utilisation_gross": round(total_used / total_gross, 6) if total_gross else 0.0,
                         "item_area_mm2": round(total_used, 3)})
-    placements_out = []
-    for b, pl in rows:
-        pl.container = names[b]
-        placements_out.append(pl)
-    metrics.update({"per_container": per, "placed_count": len(placements_out),
-                    "unplaced_count": len(unplaced)})
-    layout = Layout(containers=containers, placements=placements_out, unplaced=unplaced,
-                    metrics=metrics, findings=[])
-    if unplaced:
-        layout.findings.append(Finding("warning", "unplaced-parts",
-                                       f"{len(unplaced)} part copies found no place: "
-                                       + ", ".join(f"{k}#{c}" for k, c in unplaced[:10])
-                                       + (" ..." if len(unplaced) > 10 else "")))
-    return layout
+    metrics.update({"per_container": per, "placed_count": len(layout.placements),
+                    "unplaced_count": len(layout.unplaced)})
+    layout.findings = [f for f in layout.findings if f.code != "unplaced-parts"]
+    if layout.unplaced:
+        layout.findings.append(Finding(
+            "warning", "unplaced-parts",
+            f"{len(layout.unplaced)} part copies found no place: "
+            + ", ".join(f"{k}#{c}" for k, c in layout.unplaced[:10])
+            + (" ..." if len(layout.unplaced) > 10 else "")))

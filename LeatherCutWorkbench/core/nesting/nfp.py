@@ -12,6 +12,9 @@ of A (already shrunk by the spacing) give "part-in-part" islands: the translatio
 shifted by -b0 minus the sweep of -B along the hole boundary; they are cut
 out of the solid NFP, so one region per pair covers both cases.
 
+When both rings are convex the sum is simply the convex hull of all vertex sums
+(scipy), several times faster and exact in integers.
+
 The inner-fit region of a container region R (outer rings, defect / forbidden
 holes) is built the same way: R's outer ring shifted by -b0 minus the sweep
 along its boundary, minus the full NFP of every hole.
@@ -61,9 +64,30 @@ def _shift(path: IntPath, dx: int, dy: int) -> IntPath:
     return [[x + dx, y + dy] for x, y in path]
 
 
+def is_convex(ring: IntPath) -> bool:
+    """Does the CCW ring turn left (or go straight) at every vertex?"""
+    a = np.asarray(ring, dtype=np.float64)
+    d = np.roll(a, -1, axis=0) - a
+    cross = d[:, 0] * np.roll(d[:, 1], -1) - d[:, 1] * np.roll(d[:, 0], -1)
+    return bool((cross >= 0).all())
+
+
+def _convex_sum(a_outer: IntPath, nb: IntPath) -> IntPath:
+    """Minkowski sum of two convex rings: the convex hull of all vertex sums
+    (exact integers, counter-clockwise)."""
+    from scipy.spatial import ConvexHull
+    a = np.asarray(a_outer, dtype=np.int64)
+    b = np.asarray(nb, dtype=np.int64)
+    pts = (a[:, None, :] + b[None, :, :]).reshape(-1, 2)
+    hull = ConvexHull(pts.astype(np.float64))
+    return pts[hull.vertices].tolist()
+
+
 def solid_nfp(a_outer: IntPath, b_outer: IntPath) -> List[IntPath]:
     """A (+) (-B) for two simple CCW rings: translations of B that overlap A."""
     nb = _neg(b_outer)
+    if is_convex(a_outer) and is_convex(b_outer):
+        return [_convex_sum(a_outer, nb)]       # fast path: hull of vertex sums
     sweep = pyclipper.MinkowskiSum(nb, a_outer, True)
     base = _shift(a_outer, nb[0][0], nb[0][1])           # B's vertex inside A
     cover = _shift(nb, a_outer[0][0], a_outer[0][1])      # A's vertex inside B

@@ -22,7 +22,6 @@ from typing import Dict, List, Optional, Sequence
 from ..errors import CancelledError, InputError, LeatherCutError
 from ..model import Container, Finding, Layout, Part, Placement
 from ..progress import ProgressFn, report
-from .checker import part_polygon, placed_polygon
 from .containers import rectangle
 from .options import NestOptions
 
@@ -97,32 +96,21 @@ def run_sparrow(parts: Sequence[Part], options: NestOptions,
         last = (err.strip().splitlines() or ["no message"])[-1]
         raise LeatherCutError(f"sparrow engine failed (exit {proc.returncode}): {last}")
     res = json.loads(out)
-    by_id: Dict[str, Part] = {p.id: p for p in parts}
     copies: Dict[str, int] = {}
     placements: List[Placement] = []
-    polys = {p.id: part_polygon(p, options.chord_tol) for p in parts}
-    area = 0.0
-    right = 0.0
     for it in res["placed"]:
         pid = it["id"]
         k = copies.get(pid, 0)
         copies[pid] = k + 1
-        ang = float(it["rotation"]) % 360.0
-        pl = Placement(part_id=pid, copy=k, container="strip", x=float(it["x"]) + options.margin,
-                       y=float(it["y"]) + options.margin, angle=ang, mirrored=False)
-        placements.append(pl)
-        g = placed_polygon(polys[pid], pl.x, pl.y, pl.angle, False)
-        area += g.area
-        right = max(right, g.bounds[2])
+        placements.append(Placement(part_id=pid, copy=k, container="strip",
+                                    x=float(it["x"]) + options.margin,
+                                    y=float(it["y"]) + options.margin,
+                                    angle=float(it["rotation"]) % 360.0, mirrored=False))
     unplaced = [(p.id, k) for p in parts for k in range(copies.get(p.id, 0), p.quantity)]
-    length = right + options.margin
-    c = Container(id="strip", kind="strip", outline=rectangle(0.0, 0.0, length, spec.height))
-    dens = area / (length * spec.height) if length > 0 else 0.0
-    metrics = {"strip_width_mm": spec.height, "strip_length_mm": round(length, 6),
-               "density": round(dens, 6), "item_area_mm2": round(area, 3),
-               "per_container": [{"id": "strip", "length_mm": round(length, 6),
-                               "parts": len(placements), "density": round(dens, 6)}],
-               "placed_count": len(placements), "unplaced_count": len(unplaced), "engine": "sparrow",
-               "time_s": round(time.monotonic() - t0, 3), "seed": options.seed}
-    return Layout(containers=[c], placements=placements, unplaced=unplaced, metrics=metrics,
-                  findings=findings)
+    layout = Layout(containers=[Container(id="strip", kind="strip", outline=rectangle(0, 0, 0, spec.height))],
+                    placements=placements, unplaced=unplaced, metrics={}, findings=findings)
+    from .engine import fill_metrics
+    fill_metrics(parts, layout, options)
+    layout.metrics.update({"engine": "sparrow", "time_s": round(time.monotonic() - t0, 3),
+                           "seed": options.seed})
+    return layout

@@ -6,7 +6,7 @@
 # to check that the LinuxCNC output is accepted and traced like our reader
 # traces it; the test is skipped when the folder is missing.
 #
-#   bash tests/data/post/get_rs274.sh            # -> ~/.cache/leathercut/rs274
+#   bash tools/get_rs274.sh            # -> ~/.cache/leathercut/rs274
 set -euo pipefail
 dest="${LEATHERCUT_RS274_DIR:-$HOME/.cache/leathercut/rs274}"
 mkdir -p "$dest/debs"
