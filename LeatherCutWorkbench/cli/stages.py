@@ -33,6 +33,11 @@ def add_stage_options(parser: argparse.ArgumentParser, before: str) -> None:
     or ``"end"`` for all of them) with their non-primary names."""
     for mod in _stage_modules(before):
         mod.add_options(parser, primary=False)
+    if before in ("plan_cmd", "end"):
+        parser.add_argument(
+            "--move-to-origin", dest="job_move_to_origin", type=non_negative, default=None,
+            metavar="MM", help="without nesting: move the drawing so its lower-left corner lies "
+                               "MM mm from machine zero (default: cut where it lies)")
 
 
 def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> JobOptions:
@@ -44,6 +49,7 @@ def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> J
             setattr(opts, field, mod.options_from_args(args, machine))
         else:
             setattr(opts, field, mod.options_from_args(args))
+    opts.move_to_origin = getattr(args, "job_move_to_origin", None)
     return opts
 
 

@@ -11,19 +11,23 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, List, Optional
 
-from .model import CutPlan, Drawing, Finding, Layout, Part, Recognition
+from .geometry import Transform2D, bbox
+from .model import CutPlan, Drawing, Finding, Layout, OpenChain, Part, Recognition
 from .progress import ProgressFn, report
 
 
 @dataclass
 class JobOptions:
     """Options of every stage.  ``nest`` is None when the drawing is cut where
-    it lies (no container given)."""
+    it lies (no container given); ``move_to_origin`` (mm) then optionally moves
+    the whole drawing so its lower-left corner sits that far from machine zero
+    (drawings often lie at negative or far-away coordinates)."""
 
     import_: Any = None
     recognise: Any = None
     nest: Any = None
     plan: Any = None
+    move_to_origin: Optional[float] = None
 
 
 @dataclass
@@ -60,17 +64,29 @@ def load_and_recognise(path: str, options: JobOptions,
     return drawing, recognition
 
 
-def nest_if_asked(recognition: Recognition, options: JobOptions,
-                  progress: Optional[ProgressFn] = None) -> "tuple[Optional[Layout], List[Part]]":
-    """Nest the active parts when a container is given; otherwise the parts are
-    cut where they lie.  Returns the layout (or None) and the parts to cut."""
+def arrange(recognition: Recognition, options: JobOptions,
+            progress: Optional[ProgressFn] = None
+            ) -> "tuple[Optional[Layout], List[Part], List[OpenChain]]":
+    """Decide where the parts are cut: nested into a container when one is
+    given, else where they lie (optionally moved to the origin).  Returns the
+    layout (or None), the parts to cut and the open chains to cut.  Open chains
+    are only cut with an un-nested drawing: nesting moves parts, and stray
+    lines have no part to travel with."""
     parts = recognition.active_parts()
-    if options.nest is None:
-        return None, parts
-    from .nesting import nest, placed_parts
+    if options.nest is not None:
+        from .nesting import nest, placed_parts
 
-    layout = nest(parts, options.nest, _scaled(progress, 0.4, 0.7))
-    return layout, placed_parts(parts, layout)
+        layout = nest(parts, options.nest, _scaled(progress, 0.4, 0.7))
+        return layout, placed_parts(parts, layout), []
+    chains = list(recognition.open_chains)
+    if options.move_to_origin is not None and (parts or chains):
+        pts = [p for part in parts for p in part.outer.points(0.1)]
+        pts += [p for ch in chains for s in ch.segments for p in s.points(0.1)]
+        xmin, ymin, _, _ = bbox(pts)
+        xf = Transform2D(dx=options.move_to_origin - xmin, dy=options.move_to_origin - ymin)
+        parts = [p.transformed(xf) for p in parts]
+        chains = [c.transformed(xf) for c in chains]
+    return None, parts, chains
 
 
 def run_job(path: str, options: Optional[JobOptions] = None,
@@ -83,11 +99,8 @@ def run_job(path: str, options: Optional[JobOptions] = None,
 
     options = options or JobOptions()
     drawing, recognition = load_and_recognise(path, options, progress)
-    layout, parts = nest_if_asked(recognition, options, progress)
+    layout, parts, chains = arrange(recognition, options, progress)
     report(progress, 0.7, "planning the cut path")
-    # Open chains are only cut where the drawing is cut as it lies: a nested job
-    # moves parts, and stray lines have no part to travel with.
-    chains = recognition.open_chains if layout is None else []
     cut_plan = plan(parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
     findings = list(drawing.findings) + list(recognition.findings)
     if layout is not None:

@@ -11,11 +11,17 @@ documented in docs/CLI.md; they are the machine-readable contract of the CLI.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import copy
+from dataclasses import dataclass, field, replace
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from .geometry import (Point, Segment, bbox, path_length, path_points,
+from .geometry import (Point, Segment, Transform2D, bbox, path_length, path_points,
                        signed_area)
+
+
+def _prefixed(prefix: str, ident: str) -> str:
+    """Id of a transformed copy: ``"<prefix>/<id>"`` (unchanged when no prefix)."""
+    return f"{prefix}/{ident}" if prefix else ident
 
 
 # --------------------------------------------------------------------------
@@ -113,6 +119,9 @@ class Mark:
     position: Point
     kind: str = "point"       # "drill", "notch", "point"
     src: EdgeSource = field(default_factory=EdgeSource)
+
+    def transformed(self, xf: Transform2D) -> "Mark":
+        return Mark(xf.apply(self.position), self.kind, copy.deepcopy(self.src))
 
 
 @dataclass
@@ -224,6 +233,17 @@ class Contour:
     def bbox(self) -> Tuple[float, float, float, float]:
         return bbox(self.points())
 
+    def transformed(self, xf: Transform2D, prefix: str = "") -> "Contour":
+        """Copy moved by ``xf``.  A mirroring transform would flip the
+        orientation, so the loop is then reversed (outer stays CCW, holes CW)
+        and the shared-segment indices follow the reversal."""
+        segs = [s.transformed(xf) for s in self.segments]
+        shared = list(self.shared)
+        if xf.mirrored:
+            segs = [s.reversed() for s in reversed(segs)]
+            shared = sorted(len(segs) - 1 - i for i in shared)
+        return Contour(_prefixed(prefix, self.id), segs, self.layer, shared)
+
 
 @dataclass
 class LeadIn:
@@ -235,6 +255,10 @@ class LeadIn:
     contour_id: str
     segments: List[Segment]
     role: str = "lead_in"
+
+    def transformed(self, xf: Transform2D, prefix: str = "") -> "LeadIn":
+        return LeadIn(_prefixed(prefix, self.id), _prefixed(prefix, self.contour_id),
+                      [s.transformed(xf) for s in self.segments], self.role)
 
     @property
     def start(self) -> Point:
@@ -277,6 +301,18 @@ class Part:
     def contours(self) -> List[Contour]:
         return list(self.holes) + [self.outer]
 
+    def transformed(self, xf: Transform2D, new_id: Optional[str] = None) -> "Part":
+        """Copy moved by ``xf`` (mirror, rotate about the origin, translate).
+        With ``new_id`` the copy gets that id and its contours / lead-ins ids
+        ``"<new_id>/<old id>"``; without, every id is kept."""
+        prefix = new_id or ""
+        return replace(self, id=new_id or self.id,
+                       outer=self.outer.transformed(xf, prefix),
+                       holes=[h.transformed(xf, prefix) for h in self.holes],
+                       lead_ins=[li.transformed(xf, prefix) for li in self.lead_ins],
+                       marks=[m.transformed(xf) for m in self.marks],
+                       rotations=copy.copy(self.rotations))
+
 
 @dataclass
 class OpenChain:
@@ -297,6 +333,9 @@ class OpenChain:
     @property
     def length(self) -> float:
         return path_length(self.segments)
+
+    def transformed(self, xf: Transform2D) -> "OpenChain":
+        return OpenChain(self.id, [s.transformed(xf) for s in self.segments], self.layer)
 
 
 @dataclass

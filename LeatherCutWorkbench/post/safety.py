@@ -74,7 +74,8 @@ def check_moves(tp: Toolpath, profile: MachineProfile) -> None:
                 raise SafetyError(
                     f"{m.kind} to ({m.x:.3f}, {m.y:.3f}) mm reaches ({x:.3f}, {y:.3f}), outside "
                     f"the table {xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name} "
-                    f"(move the drawing onto the table, or nest it with --sheet/--hide)",
+                    f"(move the drawing onto the table with --move-to-origin MM, or nest it with "
+                    f"--sheet/--hide)",
                     source=_where(m, tp))
         if not (0 < m.feed <= profile.max_feed):
             raise SafetyError(
