@@ -125,9 +125,9 @@ def main() -> int:
     ap.add_argument("--no-hide", action="store_true")
     a = ap.parse_args()
     print(f"load average at start: {os.getloadavg()[0]:.2f} (2 cores)\n")
-    print(f"| instance | own density % | own length | own wall s | own layouts tried | "
-          f"spyrrow density % | spyrrow length | spyrrow wall s | ratio own/spyrrow | "
-          f"fact-sheet spyrrow 60 s % |")
+    print("| instance | own density % | own length | own wall s | own layouts tried | "
+          "spyrrow density % | spyrrow length | spyrrow wall s | ratio own/spyrrow | "
+          "fact-sheet spyrrow 60 s % |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     ratios = []
     for name in a.instances.split(","):

@@ -47,7 +47,6 @@ from LeatherCutWorkbench.core.pathplan.planner import build_instance  # noqa: E4
 from plan_shapes import leather_job  # noqa: E402
 
 try:
-    import elkai  # noqa: F401
     from elkai import _elkai
 except ImportError:  # reference is optional
     _elkai = None

@@ -74,8 +74,7 @@ def test_bad_input_exits_2_with_one_line(tmp_path, capsys):
 
 def test_console_script_entry_point():
     exe = os.path.join(os.path.dirname(sys.executable), "leathercut")
-    if not os.path.exists(exe):
-        pytest.skip("console script not installed")
+    assert os.path.exists(exe), "tools/setup.sh installs the console script into the venv"
     res = subprocess.run([exe, "inspect", os.path.join(SAMPLES, "ezdxf_recover01.dxf"), "--json"],
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 0

@@ -203,7 +203,7 @@ def test_spline_kept_as_true_bspline(tmp_path):
     msp = doc.modelspace()
     cps = [(0, 0), (10, 20), (30, -10), (50, 10), (60, 0)]
     s1 = msp.add_open_spline(cps, degree=3)
-    s2 = msp.add_rational_spline(cps, weights=[1, 2, 0.5, 1, 1], degree=2)
+    msp.add_rational_spline(cps, weights=[1, 2, 0.5, 1, 1], degree=2)
     msp.add_spline(fit_points=[(0, 50), (20, 70), (40, 40), (60, 60)])
     p = save(doc, tmp_path)
     d = read_drawing(p, RAW)

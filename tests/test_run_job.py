@@ -7,7 +7,6 @@ layer STITCH that is drawn but must not be cut.
 """
 
 import json
-import math
 import os
 import subprocess
 import sys

@@ -4,27 +4,12 @@ a strip or leather hides.  Documented in docs/CLI.md (section ``nest``)."""
 from __future__ import annotations
 
 import argparse
-import importlib
 import os
-import sys
 from typing import Any, Dict, List, Optional
 
 from . import Report, add_common_options
 from ..core.errors import InputError
-
-_EARLIER = ("inspect_cmd", "recognise_cmd")
-
-
-def _earlier_modules():
-    """Earlier stages' CLI modules that exist (they are added by other issues)."""
-    mods = []
-    for name in _EARLIER:
-        try:
-            mods.append(importlib.import_module(f".{name}", __package__))
-        except ImportError:
-            continue
-    return mods
-
+from .stages import add_stage_options, job_options, non_negative, positive, progress_bar
 
 def _size(text: str):
     try:
@@ -36,26 +21,6 @@ def _size(text: str):
         raise argparse.ArgumentTypeError(f"bad sheet size {text!r}: use WxH in mm, e.g. 1000x600")
 
 
-def _positive(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
-    if v <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
-    return v
-
-
-def _non_negative(text: str) -> float:
-    try:
-        v = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
-    if v < 0:
-        raise argparse.ArgumentTypeError(f"must be >= 0: {text!r}")
-    return v
-
-
 def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     """Nesting options; with ``primary`` False the clashing ones get ``--nest-``."""
     pre = "" if primary else "nest-"
@@ -63,7 +28,7 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     box = g.add_mutually_exclusive_group()
     box.add_argument("--sheet", dest="nest_sheet", type=_size, metavar="WxH",
                      help="nest on rectangular sheets W x H mm (new sheets as needed)")
-    box.add_argument("--strip", dest="nest_strip", type=_positive, metavar="W",
+    box.add_argument("--strip", dest="nest_strip", type=positive, metavar="W",
                      help="nest on a strip W mm wide with open length (minimise the length)")
     box.add_argument("--hide", dest="nest_hide", metavar="HIDE.dxf",
                      help="nest on the hide(s) in this DXF: layers HIDE (outline), DEFECT, ZONE_<grade>")
@@ -72,20 +37,20 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                          help="nest an ESICUP strip-packing instance (jagua-rs JSON) instead of a DXF")
     g.add_argument("--sheets", dest="nest_sheets", type=int, metavar="N",
                    help="with --sheet: use at most N sheets and report what does not fit")
-    g.add_argument("--spacing", dest="nest_spacing", type=_non_negative, default=0.0, metavar="MM",
+    g.add_argument("--spacing", dest="nest_spacing", type=non_negative, default=0.0, metavar="MM",
                    help="minimum gap between parts in mm (knife width / kerf; default 0)")
-    g.add_argument("--margin", dest="nest_margin", type=_non_negative, default=0.0, metavar="MM",
+    g.add_argument("--margin", dest="nest_margin", type=non_negative, default=0.0, metavar="MM",
                    help="minimum distance from parts to the container edge and defects in mm (default 0)")
     g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S",
                    help="allowed rotations for every part: any, a list like 0,180, or step:90 "
                         "(default: each part's own setting; ESICUP: the instance's)")
-    g.add_argument("--rotation-step", dest="nest_rotation_step", type=_positive, default=30.0,
+    g.add_argument("--rotation-step", dest="nest_rotation_step", type=positive, default=30.0,
                    metavar="DEG", help="angle step tried for parts that may turn freely (default 30)")
     g.add_argument("--mirror", dest="nest_mirror", action="store_true",
                    help="allow mirrored copies of every part")
     g.add_argument("--copies", dest="nest_copies", type=int, default=None, metavar="N",
                    help="nest N copies of every recognised part (default: each part's quantity)")
-    g.add_argument(f"--{pre}time", dest="nest_time", type=_non_negative, default=10.0, metavar="S",
+    g.add_argument(f"--{pre}time", dest="nest_time", type=non_negative, default=10.0, metavar="S",
                    help="seconds of improvement search after the first layout (default 10; 0 = none)")
     g.add_argument(f"--{pre}evaluations", dest="nest_evaluations", type=int, default=None, metavar="N",
                    help="stop each worker after N layouts: same seed, same result on any machine")
@@ -147,8 +112,7 @@ def register(subparsers) -> None:
     p.add_argument("file", metavar="FILE", nargs="?", help="DXF drawing with the parts "
                    "(not needed with --esicup)")
     add_common_options(p)
-    for mod in _earlier_modules():
-        mod.add_options(p, primary=False)
+    add_stage_options(p, before="nest_cmd")
     add_options(p, primary=True)
     p.set_defaults(func=run)
 
@@ -167,36 +131,12 @@ def _parts_from_args(args, opts):
         raise InputError("no drawing given: leathercut nest FILE.dxf --sheet WxH (or --esicup FILE.json)")
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
-    from ..core.job import JobOptions, load_and_recognise
-    jo = JobOptions()
-    for mod in _earlier_modules():
-        val = mod.options_from_args(args)
-        if mod.__name__.endswith("inspect_cmd"):
-            jo.import_ = val
-        else:
-            jo.recognise = val
-    drawing, rec = load_and_recognise(args.file, jo)
+    from ..core.job import load_and_recognise
+    drawing, rec = load_and_recognise(args.file, job_options(args, before="nest_cmd"))
     parts = rec.active_parts()
     if not parts:
         raise InputError("no closed parts recognised in the drawing", source=args.file)
     return parts, args.file, list(drawing.findings) + list(rec.findings)
-
-
-def _bar():
-    if not sys.stderr.isatty():
-        return None
-    state = {"last": -1}
-
-    def bar(frac: float, msg: str) -> bool:
-        pct = int(frac * 100)
-        if pct != state["last"]:
-            state["last"] = pct
-            sys.stderr.write(f"\r[{'#' * (pct // 4):<25}] {pct:3d}% {msg[:50]:<50}")
-            if pct >= 100:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-        return True
-    return bar
 
 
 def run(args: argparse.Namespace) -> Report:
@@ -212,7 +152,7 @@ def run(args: argparse.Namespace) -> Report:
             raise InputError(f"--copies must be >= 1, got {args.nest_copies}")
         for p in parts:
             p.quantity = args.nest_copies
-    layout = nest(parts, opts, _bar() if not args.json else None)
+    layout = nest(parts, opts, progress_bar() if not args.json else None)
     written: Dict[str, str] = {}
     for key, path, fn in (("layout", args.nest_layout_out, outputs.write_layout_json),
                           ("dxf", args.nest_dxf_out, outputs.write_dxf),

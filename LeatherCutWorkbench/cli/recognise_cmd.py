@@ -13,6 +13,7 @@ from typing import Any, Dict, FrozenSet, List
 from ..core.geometry import Segment
 from ..core.model import Contour, Recognition
 from . import Report, add_common_options
+from .stages import add_stage_options, job_options, progress_bar
 
 
 def _tol(value: str) -> float:
@@ -74,14 +75,6 @@ def options_from_args(args: argparse.Namespace):
     return opts
 
 
-def _import_cmd():
-    try:
-        from . import inspect_cmd
-    except ImportError:  # the import verb is not installed in this checkout
-        return None
-    return inspect_cmd
-
-
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "recognise", help="find parts, holes, lead-ins, open chains and doubtful contours",
@@ -90,20 +83,17 @@ def register(subparsers) -> None:
                     "probably not parts (over) and outlines left open by small gaps (under).")
     p.add_argument("file", metavar="FILE", help="DXF drawing")
     add_common_options(p)
-    imp = _import_cmd()
-    if imp is not None:
-        imp.add_options(p, primary=False)
+    add_stage_options(p, before="recognise_cmd")
     add_options(p, primary=True)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> Report:
-    from ..core.job import JobOptions, load_and_recognise
+    from ..core.job import load_and_recognise
 
-    imp = _import_cmd()
-    options = JobOptions(import_=imp.options_from_args(args) if imp is not None else None,
-                         recognise=options_from_args(args))
-    drawing, rec = load_and_recognise(args.file, options)
+    options = job_options(args, before="recognise_cmd")
+    options.recognise = options_from_args(args)
+    drawing, rec = load_and_recognise(args.file, options, None if args.json else progress_bar())
     data = recognition_json(rec, args.file)
     data["findings"] = [f.to_json() for f in list(drawing.findings) + list(rec.findings)]
     return Report(data=data, text=recognition_text(rec, args.file))

@@ -49,13 +49,15 @@ class NestPanel(panel.StagePanel):
         if layout is None:
             return
         m = layout.metrics or {}
-        util = m.get("utilisation", m.get("utilization"))
         parts = [translate("LeatherCut", "{0} placed, {1} unplaced").format(
             len(layout.placements), len(layout.unplaced))]
-        if util is not None:
-            parts.append(translate("LeatherCut", "utilisation {0:.1f} %").format(100.0 * float(util)))
-        if "strip_length" in m:
-            parts.append(translate("LeatherCut", "strip length {0:.1f} mm").format(float(m["strip_length"])))
+        if "utilisation" in m:
+            parts.append(translate("LeatherCut", "utilisation {0:.1f} %").format(
+                100.0 * float(m["utilisation"])))
+        elif "density" in m:        # strips: item area / used length x width
+            parts.append(translate("LeatherCut", "density {0:.1f} %").format(100.0 * float(m["density"])))
+        if "strip_length_mm" in m:
+            parts.append(translate("LeatherCut", "strip length {0:.1f} mm").format(float(m["strip_length_mm"])))
         parts.append(translate("LeatherCut", "{0} containers").format(len(layout.containers)))
         self.show_status(", ".join(parts))
 

@@ -54,7 +54,11 @@ def set_aside_stale_journal(gcode_path: str) -> str:
 
 
 class SendSession:
-    """One streaming run in a worker thread; the GUI reads its fields."""
+    """One run of :class:`post.link.SendSession` (greet, optional check mode,
+    journalled stream, resume from the journal) in a worker thread, with the
+    fields the panel polls: ``state``, ``progress``, ``log``, ``result``,
+    ``error``.  The streaming logic itself lives in ``post.link`` so the GUI
+    and ``leathercut send`` behave identically."""
 
     def __init__(self, gcode_path: str, machine: str, url: str, check_first: bool,
                  mode: str, resume_from: str = ""):
@@ -64,7 +68,7 @@ class SendSession:
         self.check_first = check_first
         self.mode = mode
         self.resume_from = resume_from
-        self.link = None
+        self.session = None
         self.progress = {}
         self.state = "starting"
         self.result = None
@@ -81,49 +85,41 @@ class SendSession:
 
     def _on_progress(self, info) -> None:
         self.progress = dict(info)
+        self.state = "checking" if info.get("state") == "Check" else "streaming"
 
     def _run(self) -> None:
-        from ..post.link import GrblLink, Journal, job_from_file, load_journal, resume_job
+        from ..post.link import SendSession as LinkSession, job_from_file
         from ..post.profiles import load_profile
         try:
-            profile = load_profile(self.machine)
-            job = job_from_file(self.gcode_path)
-            jpath = journal_path(self.gcode_path)
             if self.resume_from:
-                done = load_journal(jpath).done_segments() if os.path.exists(jpath) else []
-                job = resume_job(job, self.resume_from, profile, skip=done)
                 self.log.append(f"resuming at segment {self.resume_from}")
             else:
                 moved = set_aside_stale_journal(self.gcode_path)
                 if moved:
                     self.log.append(f"journal of an earlier G-code kept as {moved}")
-            self.link = GrblLink(self.url, profile.baud, progress=self._on_progress)
-            with self.link as link:
-                self.state = "greeting"
-                info = link.greet()
-                self.log.append(f"controller: {info.flavour} {info.version} axes {info.axes} "
-                                f"buffer {info.rx_size}")
-                link.use_profile(profile)
-                link.check_axes(job)
-                link.ready_for_job(profile)
-                if self.check_first:
-                    self.state = "checking"
-                    res = link.run_check(job, self.mode)
-                    self.log.append(f"check: {res.status} {res.message}".strip())
-                    if not res.ok:
-                        self.result = res
-                        self.state = res.status
-                        return
-                self.state = "streaming"
-                journal = Journal.open(jpath, job, self.mode)
-                try:
-                    res = link.stream(job, journal, self.mode)
-                finally:
-                    journal.close()
-                self.result = res
-                self.state = res.status
+            self.session = LinkSession(job_from_file(self.gcode_path), load_profile(self.machine),
+                                       self.url, journal_path(self.gcode_path), mode=self.mode,
+                                       check=self.check_first,
+                                       resume_from=self.resume_from or None,
+                                       progress=self._on_progress)
+            self.state = "greeting"
+            out = self.session.run()
+            if out.controller is not None:
+                c = out.controller
+                self.log.append(f"controller: {c.flavour} {c.version} axes {c.axes} "
+                                f"buffer {c.rx_size}")
+            if out.check is not None:
+                self.log.append(f"check: {out.check.status} {out.check.message}".strip())
+            res = out.result if out.result is not None else out.check
+            self.result = res
+            self.state = res.status if res is not None else "failed"
+            if out.result is not None:
                 self.log.append(f"{res.status}: {res.acked}/{res.total} lines"
-                                + (f", line {res.line} {res.block!r}: {res.message}" if res.line else ""))
+                                + (f", line {res.line} {res.block!r}: {res.message}"
+                                   if res.line else ""))
+            if out.resume_from:
+                self.log.append(f"resume suggested at segment {out.resume_from} "
+                                f"(journal knows it by {out.basis})")
         except LeatherCutError as exc:
             self.error = str(exc)
             self.state = "failed"
@@ -134,16 +130,16 @@ class SendSession:
             self.state = "failed"
 
     def pause(self) -> None:
-        if self.link is not None:
-            self.link.pause()
+        if self.session is not None:
+            self.session.pause()
 
     def resume(self) -> None:
-        if self.link is not None:
-            threading.Thread(target=self.link.resume, daemon=True).start()
+        if self.session is not None:   # waits for Hold:0: off the GUI thread
+            threading.Thread(target=self.session.resume, daemon=True).start()
 
     def abort(self) -> None:
-        if self.link is not None:
-            self.link.abort()
+        if self.session is not None:
+            self.session.abort()
 
 
 class SendPanel:

@@ -19,8 +19,6 @@ from __future__ import annotations
 import importlib
 import os
 import re
-import sys
-from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -380,29 +378,7 @@ def _nest_prepare(job):
 def _nest_compute(inputs, progress):
     from ..core.nesting import nest
     parts, opts = inputs
-    with closable_stdin():
-        return parts, nest(parts, opts, progress), opts
-
-
-@contextmanager
-def closable_stdin():
-    """Give worker processes a stdin they can close.
-
-    FreeCAD's GUI replaces ``sys.stdin`` with an object that has no
-    ``close()``; a forked ``multiprocessing`` worker calls
-    ``sys.stdin.close()`` first, dies with AttributeError, and the pool
-    respawns it forever (the nesting search would hang).  For the duration of
-    the stage, ``sys.stdin`` is a read-only handle on the null device."""
-    original = sys.stdin
-    if original is None or callable(getattr(original, "close", None)):
-        yield
-        return
-    sys.stdin = open(os.devnull, "r", encoding="utf-8")
-    try:
-        yield
-    finally:
-        replacement, sys.stdin = sys.stdin, original
-        replacement.close()
+    return parts, nest(parts, opts, progress), opts
 
 
 def _nest_apply(job, result):
@@ -634,8 +610,7 @@ def _run_prepare(job):
 def _run_compute(inputs, progress):
     from ..core.job import run_job
     path, opts = inputs
-    with closable_stdin():      # nesting may fork worker processes
-        return run_job(path, opts, progress), opts
+    return run_job(path, opts, progress), opts
 
 
 def _run_apply(job, result):

@@ -196,7 +196,6 @@ class CutPathViewProvider(ViewProvider):
 
     # -- drawing ------------------------------------------------------------------
     def _rebuild(self) -> None:
-        from pivy import coin
         if not hasattr(self, "overlay"):
             return
         self.overlay.removeAllChildren()

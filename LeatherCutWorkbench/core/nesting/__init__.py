@@ -22,12 +22,11 @@ finding (that would be a bug; it never happens in the tests).
 
 from __future__ import annotations
 
-import copy as _copy
 from typing import List, Optional, Sequence
 
 from ..errors import InputError
 from ..geometry import Transform2D
-from ..model import Contour, Finding, LeadIn, Layout, Mark, Part
+from ..model import Finding, Layout, Part
 from ..progress import ProgressFn, report
 from .checker import check_layout
 from .containers import read_hide_dxf
@@ -99,7 +98,8 @@ def _drop_invalid(parts: Sequence[Part], layout: Layout, problems: List[str],
 def placed_parts(parts: Sequence[Part], layout: Layout) -> List[Part]:
     """Deep copies of the parts, one per placement, transformed into container
     coordinates (mirror about the part's Y axis, rotate about its origin,
-    translate); ids ``"<part id>#<copy>"``, quantity 1."""
+    translate); ids ``"<part id>#<copy>"``, quantity 1, no parent (a copy lies
+    where nesting put it, not in its drawing's hole)."""
     by_id = {p.id: p for p in parts}
     out: List[Part] = []
     for pl in layout.placements:
@@ -107,27 +107,8 @@ def placed_parts(parts: Sequence[Part], layout: Layout) -> List[Part]:
         if src is None:
             raise InputError(f"layout places unknown part {pl.part_id!r}")
         xf = Transform2D(dx=pl.x, dy=pl.y, angle=pl.angle, mirrored=pl.mirrored)
-        new_id = f"{src.id}#{pl.copy}"
-
-        def contour(c: Contour) -> Contour:
-            segs = [s.transformed(xf) for s in c.segments]
-            if pl.mirrored:                       # mirroring flips orientation: restore it
-                segs = [s.reversed() for s in reversed(segs)]
-            return Contour(id=f"{new_id}/{c.id}", segments=segs, layer=c.layer,
-                           shared=list(c.shared))
-
-        lead_ins = [LeadIn(id=f"{new_id}/{li.id}", contour_id=f"{new_id}/{li.contour_id}",
-                           segments=[s.transformed(xf) for s in li.segments], role=li.role)
-                    for li in src.lead_ins]
-        marks = [Mark(position=xf.apply(m.position), kind=m.kind, src=_copy.deepcopy(m.src))
-                 for m in src.marks]
-        p = _copy.deepcopy(src)
-        p.id = new_id
-        p.outer = contour(src.outer)
-        p.holes = [contour(h) for h in src.holes]
-        p.lead_ins = lead_ins
-        p.marks = marks
-        p.quantity = 1
-        p.parent_id = None
-        out.append(p)
+        copy = src.transformed(xf, new_id=f"{src.id}#{pl.copy}")
+        copy.quantity = 1
+        copy.parent_id = None
+        out.append(copy)
     return out

@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import multiprocessing as mp
 import os
+import sys
 import time
-from typing import Dict, List, Optional, Sequence, Tuple
+from contextlib import contextmanager
+from typing import Dict, Iterator, List, Optional, Sequence, Tuple
 
 from shapely.geometry import Polygon
 
@@ -86,7 +88,6 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             progress: Optional[ProgressFn] = None) -> Layout:
     """Nest with the project's engine (see module doc); unchecked result."""
     t_start = time.monotonic()
-    spec = options.container
     report(progress, 0.0, "preparing part shapes")
     types = [piece_from_part(p, options.chord_tol, options.rotation_step,
                              options.part_rotations(p.rotations), options.mirror_override)
@@ -137,9 +138,36 @@ def _tick(progress: Optional[ProgressFn], t0: float, budget: float):
     return tick
 
 
+@contextmanager
+def _closable_stdin() -> Iterator[None]:
+    """Give worker processes a stdin they can close.
+
+    A starting ``multiprocessing`` worker first calls ``sys.stdin.close()``.
+    FreeCAD's GUI replaces ``sys.stdin`` with an object that has no
+    ``close()``: the worker would die with AttributeError and the pool respawn
+    it forever (the search would hang).  While the pool lives, ``sys.stdin`` is
+    then a read-only handle on the null device."""
+    original = sys.stdin
+    if original is None or callable(getattr(original, "close", None)):
+        yield
+        return
+    sys.stdin = open(os.devnull, "r", encoding="utf-8")
+    try:
+        yield
+    finally:
+        replacement, sys.stdin = sys.stdin, original
+        replacement.close()
+
+
 def _run_pool(problem: Problem, copies: List[int], options: NestOptions, n: int,
               progress: Optional[ProgressFn], t0: float):
     """One search per worker process; progress is polled here, cancel terminates."""
+    with _closable_stdin():
+        return _run_workers(problem, copies, options, n, progress, t0)
+
+
+def _run_workers(problem: Problem, copies: List[int], options: NestOptions, n: int,
+                 progress: Optional[ProgressFn], t0: float):
     ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
     budget = options.time_budget
     args = [(problem, copies, options.seed, i, budget, options.max_evaluations) for i in range(n)]

@@ -9,9 +9,12 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
-from typing import Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Dict, List, Optional, Tuple
 
 from ..geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment
+
+if TYPE_CHECKING:  # graph imports this module: only the type is needed here
+    from .graph import Piece
 
 
 class SegmentIndex:
