@@ -9,12 +9,20 @@ import sys
 
 import pytest
 
+TESTS_DIR = os.path.dirname(os.path.abspath(__file__))
+REPO_DIR = os.path.dirname(TESTS_DIR)
+
+# Import the package from this checkout before FreeCAD is imported: FreeCAD puts
+# its user Mod folders (where set-up links *a* LeatherCut checkout) on sys.path,
+# and tests must exercise the code they sit beside, not whatever that link names.
+sys.path.insert(0, REPO_DIR)
+import LeatherCutWorkbench  # noqa: E402
+
+assert os.path.dirname(os.path.dirname(os.path.abspath(LeatherCutWorkbench.__file__))) == REPO_DIR
+
 FREECAD_LIB = "/usr/lib/freecad-python3/lib"
 if os.path.isdir(FREECAD_LIB) and FREECAD_LIB not in sys.path:
     sys.path.append(FREECAD_LIB)
-
-TESTS_DIR = os.path.dirname(os.path.abspath(__file__))
-REPO_DIR = os.path.dirname(TESTS_DIR)
 DATA_DIR = os.path.join(TESTS_DIR, "data")
 SAMPLES_DIR = os.path.join(DATA_DIR, "samples")
 

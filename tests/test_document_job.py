@@ -97,11 +97,71 @@ def test_decisions_change_the_parts_to_cut(doc, sample):
     after = pipeline.effective_recognition(job)
     active = after.active_parts()
     assert len(active) == 7
-    closed = [p for p in active if p.id.endswith("-closed")][0]
+    under = _flag(job, "under")
+    fixed = [f for f in after.flags if f.id == under.FlagId][0]
+    assert fixed.accepted is True                 # the core applied exactly this fix
+    closed = [p for p in active if p.outer.id in fixed.ids][0]
     assert closed.outer.area == pytest.approx(40 * 30, rel=1e-6)   # CCW, closed by the bridge
-    assert "O1" not in [c.id for c in after.open_chains]
+    assert len(after.open_chains) == len(before.open_chains) - 1
+    # the stored recognition keeps the proposal; rejecting restores it
+    pipeline.set_flag_decision(under, "Reject")
+    rejected = pipeline.effective_recognition(job)
+    assert len(rejected.open_chains) == len(before.open_chains)
+    assert [f for f in rejected.flags if f.id == under.FlagId][0].accepted is False
     scrap_ids = set(_flag(job, "over").Ids)
     assert [p for p in active if p.outer.id in scrap_ids or p.id in scrap_ids][0].excluded is False
+
+
+def _write_fixes_sample(path):
+    """A plate with a lead-in stopping 0.3 mm short (join), a square whose bottom
+    line runs 0.3 mm past its corner (trim) and a square open by 0.2 mm (close)."""
+    import ezdxf
+    d = ezdxf.new("R2010")
+    d.header["$INSUNITS"] = 4
+    msp = d.modelspace()
+    msp.add_lwpolyline([(0, 0), (20, 0), (20, 10), (0, 10)], close=True)
+    msp.add_line((5, -4), (5, -0.3))
+    msp.add_line((50, 0), (70.3, 0))
+    msp.add_lwpolyline([(70, 0), (70, 20), (50, 20), (50, 0)], close=False)
+    msp.add_lwpolyline([(100, 0.2), (100, 20), (120, 20), (120, 0), (100, 0)], close=False)
+    d.saveas(path)
+    return path
+
+
+def test_accepting_join_and_trim_flags(doc, tmp_path):
+    job = _recognised(doc, _write_fixes_sample(str(tmp_path / "fixes.dxf")))
+    stored = objects.load_data(objects.stage_object(job, "Recognition"))
+    action = {f.id: f.action for f in stored.flags}
+    by_action = {action[f.FlagId]: f for f in pipeline.flag_objects(job) if f.Kind == "under"}
+    assert sorted(by_action) == ["close", "join", "trim"]
+    before = pipeline.effective_recognition(job)
+    plate = [p for p in before.parts if p.outer.bbox[0] == pytest.approx(0.0)][0]
+    assert not plate.lead_ins
+    n_open = len(before.open_chains)
+    doc.openTransaction("join")
+    pipeline.set_flag_decision(by_action["join"], "Accept")
+    doc.commitTransaction()
+    joined = pipeline.effective_recognition(job)
+    plate = [p for p in joined.parts if p.outer.bbox[0] == pytest.approx(0.0)][0]
+    (li,) = plate.lead_ins
+    assert li.start == pytest.approx((5.0, -4.0)) and li.end == pytest.approx((5.0, 0.0))
+    assert len(joined.open_chains) == n_open - 1
+    doc.openTransaction("trim")
+    pipeline.set_flag_decision(by_action["trim"], "Accept")
+    doc.commitTransaction()
+    both = pipeline.effective_recognition(job)
+    assert len(both.open_chains) == n_open - 2
+    assert all(abs(c.length - 0.3) > 1e-6 for c in both.open_chains)
+    state = {f.action: f.accepted for f in both.flags if f.kind == "under"}
+    assert state == {"join": True, "trim": True, "close": None}
+    assert len([p for p in both.parts if p.outer.bbox[0] == pytest.approx(0.0)][0].lead_ins) == 1
+    # each decision is one undo step
+    doc.undo()
+    assert by_action["trim"].Decision == "Undecided"
+    assert len(pipeline.effective_recognition(job).open_chains) == n_open - 1
+    doc.undo()
+    assert by_action["join"].Decision == "Undecided"
+    assert len(pipeline.effective_recognition(job).open_chains) == n_open
 
 
 def test_stage_options_are_properties(doc, sample):

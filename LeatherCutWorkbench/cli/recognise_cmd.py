@@ -38,6 +38,18 @@ def _ids(value: str) -> FrozenSet[str]:
     return frozenset(out)
 
 
+def _flag_ids(value: str) -> FrozenSet[str]:
+    out = set()
+    for part in value.replace(";", ",").split(","):
+        p = part.strip().upper()
+        if not p:
+            continue
+        if p[0] != "F" or not p[1:].isdigit():
+            raise argparse.ArgumentTypeError(f"not a flag id (F3): {part!r}")
+        out.add(p)
+    return frozenset(out)
+
+
 def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     """Recognition options; ``--include``/``--exclude`` become
     ``--recognise-include``/``--recognise-exclude`` on later verbs (not primary)."""
@@ -49,6 +61,13 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                         "'under' with bridging segments as the fix (default 0.5 mm)")
     g.add_argument("--close-gaps", dest="recognise_close_gaps", action="store_true",
                    help="apply the proposed bridges: flagged open outlines become contours")
+    g.add_argument("--accept-fix", dest="recognise_accept_fixes", type=_flag_ids, default=None,
+                   metavar="IDS", help="comma-separated ids of 'under' flags (as reported by a "
+                                       "run with the same drawing and options) whose fix to "
+                                       "apply, e.g. F2,F5; flag ids stay the same")
+    g.add_argument("--reject-fix", dest="recognise_reject_fixes", type=_flag_ids, default=None,
+                   metavar="IDS", help="comma-separated ids of 'under' flags whose fix is "
+                                       "rejected (not applied even with --close-gaps)")
     pre = "" if primary else "recognise-"
     g.add_argument(f"--{pre}include", dest="recognise_include", type=_ids, default=frozenset(),
                    metavar="IDS", help="comma-separated contour/part ids to cut even if "
@@ -69,6 +88,8 @@ def options_from_args(args: argparse.Namespace):
 
     opts = RecogniseOptions(join_tol=args.recognise_join_tol, gap_tol=args.recognise_gap_tol,
                             close_gaps=args.recognise_close_gaps,
+                            accept_fixes=getattr(args, "recognise_accept_fixes", None),
+                            reject_fixes=getattr(args, "recognise_reject_fixes", None),
                             include=args.recognise_include, exclude=args.recognise_exclude,
                             chord_tol=args.recognise_chord_tol, unfold=args.recognise_unfold)
     opts.validate()

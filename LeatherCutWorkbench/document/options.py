@@ -74,8 +74,10 @@ def _kind(value: Any) -> str:
     return "json"
 
 
-#: fields that the job stores in its own properties (see pipeline.add_nest_container_properties)
-SPECIAL_FIELDS = {"Nest": {"container"}}
+#: fields the job keeps elsewhere, not as plain option properties: the nest container in
+#: properties of its own (see pipeline.add_nest_container_properties), accepted / rejected
+#: gap fixes as the decisions on the flag objects (see pipeline.apply_decisions)
+SPECIAL_FIELDS = {"Nest": {"container"}, "Recognise": {"accept_fixes", "reject_fixes"}}
 
 
 def fields_of(stage: StageOptions) -> List[Tuple[str, str, str, Any]]:

@@ -286,73 +286,94 @@ def flag_objects(job) -> List[Any]:
 
 
 def effective_recognition(job) -> model.Recognition:
-    """The stored recognition with every person's flag decision applied."""
-    rec = objects.load_data(objects.stage_object(job, "Recognition"))
+    """The stored recognition with every person's flag decision applied.
+
+    Accepted under-recognition fixes come from the core: recognition runs again
+    on the stored drawing with the accepted flag ids (``accept_fixes``; flag ids
+    do not change when fixes are applied).  The result is cached per job until
+    the stored data, the options or the decisions change."""
+    rec_obj = objects.stage_object(job, "Recognition")
+    rec = objects.load_data(rec_obj)
     if rec is None:
         raise InputError("recognise the drawing first (Recognise)")
     decisions = {o.FlagId: o.Decision for o in flag_objects(job)}
-    return apply_decisions(rec, decisions)
+
+    def recognise_again(accept, reject):
+        drawing_obj = objects.stage_object(job, "Drawing")
+        opts = stage_options(job, "Recognise")
+        key = (hash(rec_obj.Data), hash(getattr(drawing_obj, "Data", "")), repr(opts),
+               accept, reject)
+        slot = (job.Document.Name, job.Name)
+        hit = _RERUN_CACHE.get(slot)
+        if hit is not None and hit[0] == key:
+            return hit[1]
+        drawing = objects.load_data(drawing_obj)
+        if drawing is None:
+            raise InputError("import the drawing first (Import DXF)")
+        from ..core.recognition import recognise
+        out = recognise(drawing, replace(opts, close_gaps=False, accept_fixes=accept,
+                                         reject_fixes=reject))
+        _RERUN_CACHE[slot] = (key, out)
+        return out
+
+    return apply_decisions(rec, decisions, recognise_again)
 
 
-def apply_decisions(rec: model.Recognition, decisions: Dict[str, str]) -> model.Recognition:
+#: (document, job) -> (key, recognition with the accepted fixes applied)
+_RERUN_CACHE: Dict[Tuple[str, str], Tuple[Any, model.Recognition]] = {}
+
+
+def apply_decisions(rec: model.Recognition, decisions: Dict[str, str],
+                    recognise_again: Optional[Callable[[frozenset, frozenset],
+                                                       model.Recognition]] = None
+                    ) -> model.Recognition:
     """Apply decisions (flag id -> Include / Exclude / Accept / Reject / Undecided).
 
     Over-recognised: Include clears ``excluded`` on the flagged parts, Exclude
-    sets it.  Under-recognised: Accept closes the flagged chain(s) with the
-    proposed bridge segments into a new part; Reject keeps them open chains."""
+    sets it.  Under-recognised: the fixes to apply (Accept, or Undecided on a
+    flag the stored run already applied, e.g. with ``close_gaps``) and to reject
+    are passed to ``recognise_again(accept_ids, reject_ids)``, which returns the
+    core's recognition with exactly those fixes applied; it is called only when
+    the geometry must change.  Returns a new recognition."""
     from copy import deepcopy
-    rec = deepcopy(rec)
-    for flag in rec.flags:
+    under = [f for f in rec.flags if f.kind == "under"]
+    accept = frozenset(f.id for f in under if decisions.get(f.id) == "Accept"
+                       or (decisions.get(f.id, "Undecided") == "Undecided" and f.accepted is True))
+    reject = frozenset(f.id for f in under if decisions.get(f.id) == "Reject")
+    if any((f.id in accept) != (f.accepted is True) for f in under):
+        if recognise_again is None:
+            raise LeatherCutError("accepting or rejecting a fix needs the drawing: "
+                                  "recognise again")
+        out = deepcopy(recognise_again(accept, reject))
+        _check_same_flags(rec, out, accept | reject)
+    else:
+        out = deepcopy(rec)
+        for f in out.flags:
+            if f.kind == "under" and f.id in reject:
+                f.accepted = False
+    for flag in out.flags:
         d = decisions.get(flag.id, "Undecided")
         if flag.kind == "over" and d in ("Include", "Exclude"):
             flag.accepted = d == "Exclude"
             ids = set(flag.ids)
-            for p in rec.parts:
+            for p in out.parts:
                 if p.id in ids or p.outer.id in ids:
                     p.excluded = d == "Exclude"
-        elif flag.kind == "under" and d in ("Accept", "Reject"):
-            flag.accepted = d == "Accept"
-            if d == "Accept":
-                _close_chain(rec, flag)
-    return rec
+    return out
 
 
-def _close_chain(rec: model.Recognition, flag: model.Flag) -> None:
-    """Join the flagged open chains and the bridge segments into one closed part."""
-    ids = set(flag.ids)
-    chains = [c for c in rec.open_chains if c.id in ids]
-    if not chains:
-        return  # already closed by the stage (close_gaps)
-    pieces = [list(c.segments) for c in chains] + [[s] for s in flag.fix]
-    loop = _join_pieces(pieces, tol=max(1e-6, 1e-3 * (flag.gap or 1.0)))
-    if loop is None:
-        raise LeatherCutError(f"flag {flag.id}: the bridge does not close chains {sorted(ids)}")
-    if geometry.signed_area(geometry.path_points(loop, 0.05)) < 0:
-        loop = geometry.reverse_path(loop)
-    pid = f"{chains[0].id}-closed"
-    rec.parts.append(model.Part(id=pid, outer=model.Contour(id=pid, segments=loop,
-                                                              layer=chains[0].layer),
-                                name=pid))
-    rec.open_chains = [c for c in rec.open_chains if c.id not in ids]
-
-
-def _join_pieces(pieces: List[List[geometry.Segment]], tol: float) -> Optional[List[geometry.Segment]]:
-    """Chain directed pieces end to start (reversing where needed) into a loop."""
-    loop = pieces.pop(0)
-    while pieces:
-        end = loop[-1].end
-        best = None
-        for i, pc in enumerate(pieces):
-            for rev in (False, True):
-                start = pc[-1].end if rev else pc[0].start
-                d = geometry.dist(end, start)
-                if best is None or d < best[0]:
-                    best = (d, i, rev)
-        d, i, rev = best
-        pc = pieces.pop(i)
-        loop.extend(geometry.reverse_path(pc) if rev else pc)
-    closed_gap = geometry.dist(loop[-1].end, loop[0].start)
-    return loop if closed_gap <= max(tol, 1e-3) else None
+def _check_same_flags(old: model.Recognition, new: model.Recognition, decided) -> None:
+    """The decided flags must be the same flags in the new run (else the stored
+    recognition no longer matches the drawing or the options)."""
+    got = {f.id: f for f in new.flags}
+    for f in old.flags:
+        if f.id not in decided:
+            continue
+        g = got.get(f.id)
+        if g is None or (g.kind, g.action) != (f.kind, f.action) or \
+                abs((g.gap or 0.0) - (f.gap or 0.0)) > 1e-9:
+            raise InputError(f"flag {f.id} is not the same after recognising again: the "
+                             "recognition is out of date, run Recognise again")
 
 
 def set_flag_decision(flag_obj, decision: str) -> None:

@@ -2,7 +2,8 @@
 
 Cut edges -> segments (zero-length and duplicated edges dropped) -> graph (end
 points snapped, T-junctions and overshoots split, dangling edges peeled into
-open chains) -> gap proposals (applied with ``close_gaps``) -> closed loops:
+open chains) -> gap proposals (:func:`build_graph`; the caller numbers their
+flags) -> the accepted fixes applied -> closed loops (:func:`build_loops`):
 simple cycles directly, components with junctions through FreeCAD's arrangement
 (with over-recognition evidence per cell) -> duplicate outlines dropped ->
 self-crossing / crossing outlines found.  Lengths mm.
@@ -42,9 +43,10 @@ class Group:
         self.has_grain = False
 
 
-def build(drawing: Drawing, grp: Group, options: RecogniseOptions,
-           findings: List[Finding], step) -> None:
-    """Steps 1-4: pieces, graph, gaps, loops and chains of one group."""
+def build_graph(drawing: Drawing, grp: Group, options: RecogniseOptions,
+                findings: List[Finding], step) -> None:
+    """Steps 1-3: pieces, graph, chains and gap proposals of one group (nothing
+    applied yet: the caller numbers the proposals' flags first)."""
     tol = options.join_tol
     where = f"{drawing.path}" + (f" piece {grp.name!r}" if grp.name else "")
     pieces: List[Piece] = []
@@ -95,15 +97,26 @@ def build(drawing: Drawing, grp: Group, options: RecogniseOptions,
     grp.misses = missed_contours(chain_list, graph, options.gap_tol)
     for gp in grp.misses:
         gp.chains[0].kind = "gap"
-    if options.close_gaps and (grp.gaps or grp.misses):
-        for k, gp in enumerate(grp.gaps + grp.misses):
+    grp.chains = chain_list
+
+
+def build_loops(drawing: Drawing, grp: Group, options: RecogniseOptions,
+                findings: List[Finding], step) -> None:
+    """Step 3b-4: the accepted gap fixes applied (``options.fix_decision`` of each
+    proposal's ``flag_id``), then closed loops and the remaining chains."""
+    tol = options.join_tol
+    where = f"{drawing.path}" + (f" piece {grp.name!r}" if grp.name else "")
+    graph = grp.graph
+    applied = [gp for gp in grp.gaps + grp.misses if options.fix_decision(gp.flag_id)]
+    if applied:
+        for k, gp in enumerate(applied):
             for b in gp.bridges:
                 graph.add(Piece(-1 - k, b))       # bridges carry source -1 - k
             grp.closed_gaps.append(gp)
         graph.split_at_dangling_ends(0.0)          # a bridge may end on an edge
         graph.peel()
-        chain_list = chains(graph)
-    grp.chains = chain_list
+        grp.chains = chains(graph)
+        _rebind_proposals(grp, [gp for gp in grp.gaps + grp.misses if gp not in applied])
 
     step(0.4, "building contours")
     cluster = 0
@@ -201,3 +214,26 @@ def _ident(drawing: Drawing, i: int):
         return ("bridge", i)
     h = drawing.edges[i].src.handle
     return ("h", h) if h else ("e", i)
+
+
+def _rebind_proposals(grp: Group, pending: List[GapProposal]) -> None:
+    """After applied fixes re-chained the graph: the proposals left pending
+    point at the new chain objects with the same edges (kept as ``gap``
+    chains, so they are neither lead-ins nor stubs)."""
+    if not pending:
+        return
+    by_srcs: Dict[Tuple, List[Chain]] = defaultdict(list)
+    for ch in grp.chains:
+        by_srcs[tuple(sorted(ch.srcs))].append(ch)
+    for gp in pending:
+        new = []
+        for old in gp.chains:
+            cands = by_srcs.get(tuple(sorted(old.srcs)), [])
+            match = min(cands, key=lambda c: abs(c.length - old.length), default=None)
+            if match is None:
+                continue
+            if gp in grp.misses and match.segs[-1].end != old.segs[-1].end:
+                match.reverse()                 # the free end next to the contour last
+            match.kind = "gap"
+            new.append(match)
+        gp.chains = new or gp.chains

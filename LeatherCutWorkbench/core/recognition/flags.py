@@ -30,6 +30,7 @@ class GapProposal:
         self.chains = chains
         self.bridges = bridges
         self.gap = max(b.length for b in bridges)
+        self.flag_id = ""            # its under-recognition flag (set before loops are built)
 
 
 def gap_proposals(chain_list: Sequence[Chain], graph: Graph, gap_tol: float) -> List[GapProposal]:

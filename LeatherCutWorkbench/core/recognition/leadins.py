@@ -21,7 +21,7 @@ from .nesting_depth import point_in_loop
 class Chain:
     """A run of peeled pieces from node ``a`` to node ``b`` (segments oriented)."""
 
-    __slots__ = ("segs", "a", "b", "srcs", "kind", "contour", "id")
+    __slots__ = ("segs", "a", "b", "srcs", "kind", "flag_id", "contour", "id")
 
     def __init__(self, segs: List[Segment], a: int, b: int, srcs: List[int]):
         self.segs = segs
@@ -29,6 +29,7 @@ class Chain:
         self.b = b
         self.srcs = srcs
         self.kind = "open"          # "open", "lead_in", "lead_out", "overshoot"
+        self.flag_id = ""           # its trim flag when an overshoot (stub)
         self.contour: Optional[object] = None
         self.id = ""
 

@@ -8,7 +8,7 @@ file -- pieces are never merged):
 2. graph: end points snapped at ``join_tol``, edges split at T-junctions and at
    short overshoots, degree-1 edges peeled off into open chains;
 3. under-recognition: open chains that close with bridges <= ``gap_tol``
-   (applied when ``close_gaps``);
+   (applied when ``close_gaps`` or when their flag is in ``accept_fixes``);
 4. closed loops: simple cycles -> closed paths (checked for self-crossing);
    components with junctions -> FreeCAD arrangement cells (common edges);
 5. over-recognition evidence -> flags; person's include/exclude applied;
@@ -25,7 +25,7 @@ from typing import Dict, List, Optional, Set
 from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, Part,
                      Recognition)
 from ..progress import ProgressFn, report
-from .build import Group, build
+from .build import Group, build_graph, build_loops
 from .flags import frame_evidence
 from .from_part import reverse
 from .leadins import Chain, assign_lead_outs, classify
@@ -51,7 +51,12 @@ def recognise(drawing: Drawing, options: RecogniseOptions = RecogniseOptions(),
     """Find the parts, holes, lead-ins, open chains and doubtful contours of a drawing.
 
     Units mm.  Outer contours come out counter-clockwise, holes clockwise; ids are
-    stable for the same drawing and options (P, C, L, O, F + running number)."""
+    stable for the same drawing and options (P, C, L, O, F + running number).
+
+    Flag ids do not depend on which fixes are applied: the flags of gap and
+    missed-contour proposals come first (F1.., numbered before any loop is
+    built), then the stub (trim) flags, then the over-recognition flags, so a
+    run with ``accept_fixes`` reports the ids of the proposal run."""
     options.validate()
     # The build allocates hundreds of thousands of small objects that live until
     # the end; the cyclic collector re-scanning them again and again doubled the
@@ -71,17 +76,33 @@ def _recognise(drawing: Drawing, options: RecogniseOptions,
     ids = _Ids()
     groups = _groups(drawing)
     report(progress, 0.0, "recognising contours")
-    for gi, grp in enumerate(groups):
-        lo, hi = gi / len(groups), (gi + 1) / len(groups)
 
-        def step(f: float, msg: str, lo=lo, hi=hi) -> None:
+    def stepper(gi: int, a: float = 0.05, b: float = 1.0):
+        """Progress of group ``gi`` within the overall span [a, b]."""
+        lo = a + (b - a) * gi / len(groups)
+        hi = a + (b - a) * (gi + 1) / len(groups)
+
+        def step(f: float, msg: str) -> None:
             report(progress, lo + (hi - lo) * f, msg)
+        return step
 
-        build(drawing, grp, options, rec.findings, step)
+    for gi, grp in enumerate(groups):
+        build_graph(drawing, grp, options, rec.findings, stepper(gi, 0.0, 0.05))
+        for gp in grp.gaps + grp.misses:          # numbered before any fix is applied
+            gp.flag_id = ids.next("F")
+    over: List[Flag] = []
+    for gi, grp in enumerate(groups):
+        step = stepper(gi)
+        build_loops(drawing, grp, options, rec.findings, step)
         step(0.8, "nesting depth, lead-ins and flags")
-        _emit(drawing, grp, options, ids, rec)
+        over.extend(_emit(drawing, grp, options, ids, rec))
         step(1.0, f"recognised {gi + 1}/{len(groups)} groups")
+    for f in over:
+        f.id = ids.next("F")
+    rec.flags.extend(over)
+    rec.flags.sort(key=lambda f: _num(f.id))
     _apply_part_decisions(rec, options)
+    _unknown_fixes(rec, options)
     return rec
 
 
@@ -102,15 +123,17 @@ def _groups(drawing: Drawing) -> List[Group]:
 
 
 def _emit(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
-          rec: Recognition) -> None:
-    """Steps 5-7 for one group, appending to ``rec``."""
+          rec: Recognition) -> List[Flag]:
+    """Steps 5-7 for one group, appending to ``rec``.  Returns the group's
+    over-recognition flags, not yet numbered (they come after all under flags)."""
     loops = grp.loops
     for lp in loops:
         lp.contour_id = ids.next("C")
     _outline_findings(grp, rec, drawing.path)
     par, depth = _decide(loops, options)
     layer = _layer_of(drawing)
-    part_of_loop = _make_parts(drawing, grp, options, ids, rec, par, depth, layer)
+    over: List[Flag] = []
+    part_of_loop = _make_parts(drawing, grp, options, ids, over, par, depth, layer)
     node_loops = _attach_chains(grp, options, ids, rec, part_of_loop, layer)
     _under_flags(grp, options, ids, rec, node_loops)
     _place_marks(drawing, grp, loops, part_of_loop, depth, options.join_tol, rec)
@@ -119,6 +142,7 @@ def _emit(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
         _unfold(grp, line, part_of_loop, depth, options, ids, rec, drawing.path)
     rec.parts.extend(sorted({id(p): p for p in part_of_loop.values()}.values(),
                             key=lambda p: _num(p.id)))
+    return over
 
 
 def _outline_findings(grp: Group, rec: Recognition, path: str) -> None:
@@ -170,7 +194,7 @@ def _decide(loops: List[Loop], options: RecogniseOptions):
 
 
 def _make_parts(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
-                rec: Recognition, par, depth, layer) -> Dict[int, Part]:
+                over: List[Flag], par, depth, layer) -> Dict[int, Part]:
     """Over flags, then one part per even-depth (or excluded) loop with the
     odd-depth loops inside it as holes.  Returns loop index -> its part."""
     loops = grp.loops
@@ -178,7 +202,7 @@ def _make_parts(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _I
     for lp in loops:
         if lp.evidence:
             accepted = None if lp.contour_id not in decided else lp.contour_id in options.exclude
-            rec.flags.append(Flag(ids.next("F"), "over", [lp.contour_id],
+            over.append(Flag("", "over", [lp.contour_id],
                                   "; ".join(lp.evidence), accepted=accepted, action="exclude"))
     contour_of = {i: Contour(lp.contour_id, lp.segs, layer(lp.srcs), list(lp.shared_idx))
                   for i, lp in enumerate(loops)}
@@ -226,8 +250,10 @@ def _attach_chains(grp: Group, options: RecogniseOptions, ids: _Ids, rec: Recogn
     opens = [ch for ch in grp.chains if ch.kind in ("open", "overshoot", "gap")]
     opens.sort(key=lambda c: (min(c.srcs) if c.srcs else 1 << 60))
     for ch in opens:
-        if ch.kind == "overshoot" and options.close_gaps:
-            continue                                  # trimmed
+        if ch.kind == "overshoot":
+            ch.flag_id = ids.next("F")
+            if options.fix_decision(ch.flag_id):
+                continue                              # trimmed
         ch.id = ids.next("O")
         rec.open_chains.append(OpenChain(ch.id, ch.segs, layer(ch.srcs)))
     return node_loops
@@ -235,38 +261,55 @@ def _attach_chains(grp: Group, options: RecogniseOptions, ids: _Ids, rec: Recogn
 
 def _under_flags(grp: Group, options: RecogniseOptions, ids: _Ids, rec: Recognition,
                  node_loops: Dict[int, List[int]]) -> None:
-    """Flags for gaps, chains missing a contour and stubs (accepted when closed)."""
+    """Flags for gaps, chains missing a contour and stubs; the applied fixes'
+    flags are accepted and name what the fix made, the rejected ones are
+    accepted False, the others are proposals (accepted None)."""
     loops = grp.loops
-    if not options.close_gaps:
-        for gp in grp.gaps:
+    closed = {id(gp): k for k, gp in enumerate(grp.closed_gaps)}
+    for gp in grp.gaps + grp.misses:
+        action = "join" if gp in grp.misses else "close"
+        k = closed.get(id(gp))
+        if k is not None:
+            made = [loops[i].contour_id for i in range(len(loops)) if (-1 - k) in loops[i].srcs]
+            made += [ch.id for ch in grp.chains if (-1 - k) in ch.srcs and ch.id]
+            reason = (f"gap of {gp.gap:.4g} mm closed with {len(gp.bridges)} bridging "
+                      "segment(s) (fix accepted)")
+            rec.flags.append(Flag(gp.flag_id, "under", made, reason, gap=gp.gap,
+                                  fix=list(gp.bridges), accepted=True, action=action))
+            continue
+        if action == "close":
             reason = (f"open outline of {len(gp.chains)} chain(s) closes with "
                       f"{len(gp.bridges)} bridging segment(s), largest gap {gp.gap:.4g} mm "
                       f"(gap tolerance {options.gap_tol} mm)")
-            rec.flags.append(Flag(ids.next("F"), "under",
-                                  sorted((c.id for c in gp.chains), key=_num), reason,
-                                  gap=gp.gap, fix=list(gp.bridges)))
-        for gp in grp.misses:
+            flagged = sorted((c.id for c in gp.chains if c.id), key=_num)
+        else:
             reason = (f"open chain ends {gp.gap:.4g} mm short of a contour (a lead-in that "
                       "misses it?); the bridge joins it to the nearest contour point")
-            rec.flags.append(Flag(ids.next("F"), "under", [gp.chains[0].id], reason,
-                                  gap=gp.gap, fix=list(gp.bridges), action="join"))
-    for k, gp in enumerate(grp.closed_gaps):
-        made = [loops[i].contour_id for i in range(len(loops)) if (-1 - k) in loops[i].srcs]
-        made += [ch.id for ch in grp.chains if (-1 - k) in ch.srcs and ch.id]
-        reason = (f"gap of {gp.gap:.4g} mm closed with {len(gp.bridges)} bridging segment(s) "
-                  f"(--close-gaps)")
-        rec.flags.append(Flag(ids.next("F"), "under", made, reason, gap=gp.gap,
-                              fix=list(gp.bridges), accepted=True,
-                              action="join" if gp in grp.misses else "close"))
-    for ch in sorted(grp.chains, key=lambda c: (c.id == "", _num(c.id) if c.id else 0)):
+            flagged = [c.id for c in gp.chains[:1] if c.id]
+        rec.flags.append(Flag(gp.flag_id, "under", flagged, reason, gap=gp.gap,
+                              fix=list(gp.bridges), accepted=options.fix_decision(gp.flag_id),
+                              action=action))
+    for ch in grp.chains:
         if ch.kind != "overshoot":
             continue
+        trimmed = bool(options.fix_decision(ch.flag_id))
         cont = [loops[i].contour_id for i in node_loops.get(ch.b, [])][:1]
         reason = (f"{ch.length:.4g} mm stub hangs off the contour (a line running past a corner "
                   "or a drawing artefact, no longer than the gap tolerance); fix: trim it")
-        rec.flags.append(Flag(ids.next("F"), "under", cont if options.close_gaps else [ch.id],
+        rec.flags.append(Flag(ch.flag_id, "under", cont if trimmed else [ch.id],
                               reason, gap=ch.length, fix=[], action="trim",
-                              accepted=True if options.close_gaps else None))
+                              accepted=options.fix_decision(ch.flag_id)))
+
+
+def _unknown_fixes(rec: Recognition, options: RecogniseOptions) -> None:
+    """A warning for accepted / rejected fix ids that name no under flag."""
+    asked = set(options.accept_fixes or ()) | set(options.reject_fixes or ())
+    unknown = sorted(asked - {f.id for f in rec.flags if f.kind == "under"},
+                     key=lambda t: (len(t), t))
+    if unknown:
+        rec.findings.append(Finding("warning", "unknown-id",
+                                    "flags with no fix to accept or reject: "
+                                    + ", ".join(unknown), "--accept-fix"))
 
 
 def _unfold(grp: Group, line, part_of_loop: Dict[int, Part], depth: List[int],
