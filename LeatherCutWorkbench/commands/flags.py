@@ -16,7 +16,7 @@ import FreeCADGui as Gui
 from PySide import QtGui
 
 from ..document import pipeline
-from . import base, paths
+from . import base, panel, paths
 
 translate = FreeCAD.Qt.translate
 
@@ -33,7 +33,7 @@ def flags_of_kind(job, kind: str) -> List:
     return [o for o in pipeline.flag_objects(job) if o.Kind == kind]
 
 
-class FlagPanel:
+class FlagPanel(panel.CloseOnlyPanel):
     """Review the flags of one kind; every decision is its own undo step."""
 
     def __init__(self, job, kind: str):
@@ -108,19 +108,8 @@ class FlagPanel:
         if decision != "Undecided" and any(x.Decision == "Undecided" for x in self.flags):
             self.list.setCurrentRow(self._first_undecided())
 
-    def getStandardButtons(self):
-        return int(QtGui.QDialogButtonBox.Close)
-
-    def reject(self):
-        Gui.Control.closeDialog()
-        return True
-
-    def accept(self):
-        return self.reject()
-
 
 def open_flag_panel(kind: str) -> FlagPanel:
-    from . import panel
     panel.ensure_no_dialog()
     job = base.active_job()
     p = FlagPanel(job, kind)

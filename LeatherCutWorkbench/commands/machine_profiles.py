@@ -10,13 +10,13 @@ import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-from . import base, paths
+from . import base, panel, paths
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
 
 
-class ProfilesPanel:
+class ProfilesPanel(panel.CloseOnlyPanel):
     """List of profiles with their settings; *Use for this job* sets the job's
     machine (one undo step); *Copy to user folder* makes an editable copy."""
 
@@ -88,16 +88,6 @@ class ProfilesPanel:
         os.makedirs(folder, exist_ok=True)
         QtGui.QDesktopServices.openUrl(QtCore.QUrl.fromLocalFile(folder))
 
-    def getStandardButtons(self):
-        return int(QtGui.QDialogButtonBox.Close)
-
-    def reject(self):
-        Gui.Control.closeDialog()
-        return True
-
-    def accept(self):
-        return self.reject()
-
 
 class MachineProfiles(base.Command):
     NAME = "LeatherCut_MachineProfiles"
@@ -111,7 +101,6 @@ class MachineProfiles(base.Command):
         return not Gui.Control.activeDialog()
 
     def run(self) -> None:
-        from . import panel
         panel.ensure_no_dialog()
         panel.show(ProfilesPanel(base.active_job()))
 

@@ -261,6 +261,21 @@ class StagePanel(JobPropertyPanel):
 CURRENT = None
 
 
+class CloseOnlyPanel:
+    """Mixin for panels whose work is done as the user clicks (each click its
+    own undo step): only a *Close* button, which just closes the panel."""
+
+    def getStandardButtons(self):
+        return int(QtGui.QDialogButtonBox.Close)
+
+    def reject(self):
+        Gui.Control.closeDialog()
+        return True
+
+    def accept(self):
+        return self.reject()
+
+
 def show(panel) -> None:
     """Open ``panel`` in the task view."""
     global CURRENT

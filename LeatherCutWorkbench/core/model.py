@@ -24,6 +24,25 @@ def _prefixed(prefix: str, ident: str) -> str:
     return f"{prefix}/{ident}" if prefix else ident
 
 
+class _Path:
+    """Start, end and length (mm) of anything cut along its ``segments``
+    (lead-ins, open chains, cut items): a connected, directed path."""
+
+    segments: List[Segment]
+
+    @property
+    def start(self) -> Point:
+        return self.segments[0].start
+
+    @property
+    def end(self) -> Point:
+        return self.segments[-1].end
+
+    @property
+    def length(self) -> float:
+        return path_length(self.segments)
+
+
 # --------------------------------------------------------------------------
 # Findings: what a stage wants a person to know (never printed by the core).
 # --------------------------------------------------------------------------
@@ -246,7 +265,7 @@ class Contour:
 
 
 @dataclass
-class LeadIn:
+class LeadIn(_Path):
     """Open chain that enters a contour: the cut starts at ``segments[0].start``
     (the free end) and reaches the contour at ``segments[-1].end``.
     ``role`` is ``"lead_in"`` or ``"lead_out"`` (then it starts on the contour)."""
@@ -260,17 +279,6 @@ class LeadIn:
         return LeadIn(_prefixed(prefix, self.id), _prefixed(prefix, self.contour_id),
                       [s.transformed(xf) for s in self.segments], self.role)
 
-    @property
-    def start(self) -> Point:
-        return self.segments[0].start
-
-    @property
-    def end(self) -> Point:
-        return self.segments[-1].end
-
-    @property
-    def length(self) -> float:
-        return path_length(self.segments)
 
 
 @dataclass
@@ -315,24 +323,13 @@ class Part:
 
 
 @dataclass
-class OpenChain:
+class OpenChain(_Path):
     """A connected run of edges that does not close and is not a lead-in."""
 
     id: str
     segments: List[Segment]
     layer: str = ""
 
-    @property
-    def start(self) -> Point:
-        return self.segments[0].start
-
-    @property
-    def end(self) -> Point:
-        return self.segments[-1].end
-
-    @property
-    def length(self) -> float:
-        return path_length(self.segments)
 
     def transformed(self, xf: Transform2D) -> "OpenChain":
         return OpenChain(self.id, [s.transformed(xf) for s in self.segments], self.layer)
@@ -428,7 +425,7 @@ class Layout:
 # --------------------------------------------------------------------------
 
 @dataclass
-class CutItem:
+class CutItem(_Path):
     """One contour (or lead-in + contour, or open chain) cut in one go.
 
     ``segments`` are in cutting order: the lead-in (if any) first, then the
@@ -445,17 +442,6 @@ class CutItem:
     lead_in_count: int = 0
     lifts: List[int] = field(default_factory=list)
 
-    @property
-    def start(self) -> Point:
-        return self.segments[0].start
-
-    @property
-    def end(self) -> Point:
-        return self.segments[-1].end
-
-    @property
-    def length(self) -> float:
-        return path_length(self.segments)
 
 
 @dataclass
