@@ -11,6 +11,12 @@ set -euo pipefail
 dest="${LEATHERCUT_RS274_DIR:-$HOME/.cache/leathercut/rs274}"
 mkdir -p "$dest/debs"
 cd "$dest/debs"
-apt-get download linuxcnc-uspace libboost-python1.74.0 2>/dev/null
+pkgs=(linuxcnc-uspace libboost-python1.74.0)
+if ! apt-get download "${pkgs[@]}" 2>/dev/null; then
+  # empty or stale package lists (fresh images): refresh them once, then retry
+  sudo_cmd=""; [ "$(id -u)" = "0" ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -q >/dev/null
+  apt-get download "${pkgs[@]}"
+fi
 for deb in *.deb; do dpkg-deb -x "$deb" "$dest/root"; done
 echo "rs274 in $dest/root/usr/bin/rs274 (libraries in $dest/root/usr/lib)"

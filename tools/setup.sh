@@ -13,7 +13,8 @@ cd "$here"
 sudo_cmd=""
 if [ "$(id -u)" != "0" ]; then sudo_cmd="sudo"; fi
 
-debs=(freecad-python3 xvfb xauth python3-venv)
+# libedit2, libtirpc3, libpython3.11: runtime of the LinuxCNC rs274 interpreter the post tests use
+debs=(freecad-python3 xvfb xauth python3-venv libedit2 libtirpc3 libpython3.11)
 missing=()
 for p in "${debs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
