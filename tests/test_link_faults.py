@@ -1,15 +1,21 @@
 """Every fault the emulator injects: a real job streamed through pyserial into
 the fake controller stops safely, and resuming from the journal cuts every
-segment exactly once (none lost, none repeated)."""
+segment exactly once (none lost, none repeated).
+
+Two sets of cases: the shipped profiles (a ``G4 P0`` sync after each item:
+after a fault that loses the position, completed segments of the interrupted
+item may be cut again) and the same profiles with ``sync_every_segment`` (a
+sync after every segment: after *any* fault the resume starts at the
+interrupted segment -- the only segment that may be cut twice)."""
 
 
 import pytest
 
 from LeatherCutWorkbench.post import gcode
 from LeatherCutWorkbench.post.emulator import FakeController, Fault
-from LeatherCutWorkbench.post.link import (GrblLink, Journal, job_from_program, load_journal,
-                                           resume_job)
-from LeatherCutWorkbench.post.profiles import load_profile
+from LeatherCutWorkbench.post.link import (GrblLink, Journal, job_from_lines, job_from_program,
+                                           load_journal, resume_job)
+from LeatherCutWorkbench.post.profiles import load_profile, profile_from_dict
 
 from post_helpers import sample_plan
 
@@ -36,13 +42,29 @@ def line_outcomes(results, blocks, start):
     return out
 
 
-def complete_segments(job, outcomes):
-    """Segments whose every job line the machine executed."""
+def complete_segments(job, outcomes, ignore=()):
+    """Segments whose every job line the machine executed (blocks in ``ignore``,
+    e.g. the closing ``G4P0`` sync that cuts nothing, are not required)."""
     lines = {}
     for k, s in enumerate(job.segs):
-        if s and job.index[k] is not None:
+        if s and job.index[k] is not None and job.blocks[k] not in ignore:
             lines.setdefault(s, []).append(k)
     return {s for s, ks in lines.items() if all(outcomes.get(k) for k in ks)}
+
+
+def segment_sync_profile(flavour):
+    """The shipped profile of ``flavour`` with a sync after every segment (through
+    the profile validation, like a user's JSON file)."""
+    name = "grbl11_knife_z_servo" if flavour == "grbl" else "grblhal_tangential"
+    return profile_from_dict({**load_profile(name).to_json(), "sync_every_segment": True})
+
+
+def line_of(job, seg, n):
+    """Emulator line number (1-based G-code lines received) of the ``n``-th
+    block of segment ``seg`` (1-based; -1 = its last block, the sync)."""
+    ks = [k for k, s in enumerate(job.segs) if s == seg]
+    assert job.blocks[ks[-1]] == "G4P0", "segment does not end with its sync"
+    return (ks[n - 1] if n > 0 else ks[n]) + 1
 
 
 def connect(emu, profile):
@@ -81,6 +103,54 @@ def test_fault_stops_safely_and_resume_loses_nothing(case, tmp_path):
     run_fault_case(tmp_path, flavour, mode, fault, planner=planner)
 
 
+SEGMENT_SYNC_CASES = [
+    # id, flavour, mode, fault kind, fault options, planner blocks, (segment,
+    # n-th block of it; -1 = its closing G4 P0).  3:5 and 7:5 are the 18-line
+    # curve of the outlines: a fault in it interrupts a segment half cut, with
+    # the planner holding acknowledged, unexecuted lines of it.
+    ("error-grbl-send-response", "grbl", "send-response", "error", dict(code=20), 0, ("3:5", 8)),
+    ("error-grbl-char-count", "grbl", "char-count", "error", dict(code=33), 0, ("3:5", 8)),
+    ("error-grblhal-latched", "grblhal", "char-count", "error", dict(code=36), 0, ("3:5", 8)),
+    ("alarm", "grblhal", "char-count", "alarm", dict(code=2), 0, ("7:5", 5)),
+    ("reset-banner", "grblhal", "char-count", "reset", {}, 0, ("3:5", 10)),
+    ("stall", "grblhal", "send-response", "stall", dict(seconds=2.0), 0, ("3:5", 3)),
+    ("disconnect", "grblhal", "char-count", "disconnect", {}, 0, ("3:5", 10)),
+    ("garbled-line", "grbl", "char-count", "garble", {}, 0, ("3:5", 6)),
+    ("planner-error-grbl", "grbl", "char-count", "error", dict(code=33), 6, ("3:5", 10)),
+    ("planner-error-grblhal", "grblhal", "char-count", "error", dict(code=36), 6, ("3:5", 10)),
+    ("planner-alarm", "grblhal", "char-count", "alarm", dict(code=2), 6, ("3:5", 10)),
+    ("planner-reset-banner", "grblhal", "char-count", "reset", {}, 6, ("7:5", 12)),
+    ("planner-stall", "grblhal", "char-count", "stall", dict(seconds=2.0), 6, ("3:5", 10)),
+    ("planner-disconnect", "grblhal", "char-count", "disconnect", {}, 6, ("3:5", 12)),
+    ("planner-garbled-line", "grbl", "char-count", "garble", {}, 6, ("3:5", 10)),
+    # edges of a segment for the faults that lose the position
+    ("reset-at-sync", "grblhal", "char-count", "reset", {}, 6, ("3:4", -1)),
+    ("reset-at-segment-start", "grbl", "char-count", "reset", {}, 6, ("3:6", 1)),
+    ("reset-in-first-segment", "grbl", "send-response", "reset", {}, 0, ("1:1", 5)),
+    ("disconnect-at-sync", "grblhal", "char-count", "disconnect", {}, 0, ("2:2", -1)),
+    ("disconnect-at-segment-start", "grbl", "char-count", "disconnect", {}, 6, ("7:6", 1)),
+]
+
+
+@pytest.mark.parametrize("case", SEGMENT_SYNC_CASES, ids=[c[0] for c in SEGMENT_SYNC_CASES])
+def test_segment_sync_resumes_exactly_after_every_fault(case, tmp_path):
+    """With a sync after every segment, every fault -- including a reset we did
+    not ask for and a disconnect, which lose the position -- resumes at the
+    interrupted segment: executed-before-fault | executed-after-resume is
+    every segment, and they share at most that one segment."""
+    name, flavour, mode, kind, kw, planner, (seg, n) = case
+    profile = segment_sync_profile(flavour)
+    job = make_job(profile)
+    fault = Fault(kind, line_of(job, seg, n), **kw)
+    # a disconnect loses the answers still in transit: when it strikes as the
+    # next segment starts, the previous segment's sync ok may be among them
+    # (that segment is then the one cut twice; the next one never started)
+    order = job.segment_ids
+    unconfirmed = order[order.index(seg) - 1] if kind == "disconnect" and n == 1 else None
+    run_fault_case(tmp_path, flavour, mode, fault, planner=planner, profile=profile,
+                   fault_seg=seg, queued=bool(planner) and n > planner, unconfirmed=unconfirmed)
+
+
 def test_lines_executed_after_an_error_are_not_cut_again(tmp_path):
     """Stock GRBL keeps executing what is in its buffer after an error: with
     character counting a whole later segment can be cut before the hold lands.
@@ -94,7 +164,8 @@ def test_lines_executed_after_an_error_are_not_cut_again(tmp_path):
     assert "1:1" in done2 and "2:1" not in done2    # ... and is not cut again
 
 
-def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
+def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, profile=None,
+                   fault_seg=None, queued=None, unconfirmed=None):
     """Stream a job into a controller that faults, check the stop, the journal's
     account of what was cut, then resume and check every segment was cut.
 
@@ -102,12 +173,28 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
     stall, garbled line) must be resumed exactly: no segment lost, none cut
     twice.  After a reset we did not ask for or a disconnect the position is
     lost; then nothing may be lost and only segments after the last point the
-    journal knows was executed (a synchronising line) may be cut again."""
+    journal knows was executed (a synchronising line) may be cut again.
+
+    With ``fault_seg`` (a profile with ``sync_every_segment``) the check is
+    strict for every fault: the resume starts at ``fault_seg``, the segment the
+    fault interrupted, and it is the only segment that may be cut twice (when
+    its moves were all made but its sync was never acknowledged).  When the
+    link was lost, ``unconfirmed`` names the segment before it whose sync
+    answer may have been lost in transit; the resume may start there, and then
+    ``fault_seg`` must not have been started."""
     # stock GRBL: knife on Z, servo lift, no homing; grblHAL: C axis, Z lift, homing
-    profile = load_profile("grbl11_knife_z_servo" if flavour == "grbl" else "grblhal_tangential")
+    if profile is None:
+        profile = load_profile("grbl11_knife_z_servo" if flavour == "grbl"
+                               else "grblhal_tangential")
+    strict = fault_seg is not None
+    case_seg = fault_seg
     axes = "XYZ" if flavour == "grbl" else "XYZC"
     exact = fault.kind not in ("reset", "disconnect")
     fault.long_move = bool(planner)      # queued, acknowledged moves wait behind a long one
+    queued = bool(planner) if queued is None else queued
+    # what cutting a segment means: every line made, except the closing sync
+    # (it moves nothing; a segment cut but not synced is re-cut, and counted)
+    ignore = ("G4P0",) if strict else ()
     job = make_job(profile)
     jpath = str(tmp_path / "job.journal")
     emu = FakeController(flavour=flavour, axes=axes, homing=profile.homing, line_time=line_time,
@@ -140,16 +227,31 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
         assert res.position_trusted == exact
         session_of_job = emu.results[mark1][0]
         run1 = [r for r in emu.results[mark1:] if r[0] == session_of_job]
+        # after the fault the controller made no move of the job (only the
+        # knife-up lines of the safe stop)
+        after = [r[1] for r in emu.results[mark1:] if r[0] != session_of_job and r[3]]
+        assert not [b for b in after if "X" in b or "Y" in b], after
         outcomes1 = line_outcomes(run1, job.blocks, 0)
-        done1 = complete_segments(job, outcomes1)
-        if planner:     # the controller really held acknowledged, unexecuted moves
+        done1 = complete_segments(job, outcomes1, ignore)
+        if queued:      # the controller really held acknowledged, unexecuted moves
             assert any(r[2] == "ok" and not r[3] for r in run1)
         # ---- the journal's account of what was cut
         state = load_journal(jpath)
         claimed = set(state.done_segments())
         assert claimed <= done1                  # never claims an uncut segment
         recut = done1 - claimed
-        if exact:
+        if strict:
+            # the journal knows every completed segment but, at most, the
+            # interrupted one; the resume starts exactly there
+            if state.first_incomplete() == unconfirmed is not None:
+                fault_seg = unconfirmed
+                assert not any(outcomes1.get(k) for k, s in enumerate(job.segs)
+                               if s == case_seg), "the next segment was started"
+            assert state.first_incomplete() == fault_seg, (state.bases, fault_seg)
+            assert recut <= {fault_seg}, (state.bases, recut)
+            if exact:
+                assert recut == set(), (state.bases, recut)
+        elif exact:
             assert recut == set(), (state.bases, recut)
         else:
             # position lost: only what follows the last synchronised point is cut again
@@ -177,10 +279,13 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
         link.close()
         assert res2.status == "done", res2
         outcomes2 = line_outcomes(target.results, rjob.blocks, mark2)
-        done2 = complete_segments(rjob, outcomes2)
+        done2 = complete_segments(rjob, outcomes2, ignore)
         # ---- nothing lost; nothing repeated beyond what the journal could not know
         assert done1 | done2 == set(job.segment_ids)
         assert done1 & done2 == recut
+        if strict:
+            assert done1 & done2 <= {fault_seg}
+            assert fault_seg in done2 and fault_seg == resume_from
         lines_of = {}
         for k, s in enumerate(job.segs):
             if s:
@@ -195,3 +300,53 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0):
         emu.close()
         if emu2 is not None:
             emu2.close()
+
+
+class BurstPort:
+    """A port on which, right after the host writes its ``burst_after``-th line,
+    the controller's answers to every line so far and then a reset banner (or
+    the loss of the port) arrive in one read -- as when a controller resets or
+    a cable is pulled just after answering a segment's sync.  Replies go
+    through the link's own parser (``_handle``); nothing answers ``?``."""
+
+    def __init__(self, link, burst_after, then):
+        self.link, self.burst_after, self.then, self.lines = link, burst_after, then, 0
+
+    def write(self, data):
+        if data.endswith(b"\n"):
+            self.lines += 1
+            if self.lines == self.burst_after:
+                for _ in range(self.burst_after):
+                    self.link._handle("ok")
+                if self.then == "reset":
+                    self.link._handle("Grbl 1.1h ['$' for help]")
+                else:
+                    self.link._lost = "port closed or unplugged"
+        return len(data)
+
+    def close(self):
+        pass
+
+
+@pytest.mark.parametrize("then", ["reset", "lost"])
+def test_answers_received_before_a_reset_or_loss_are_journaled(then, tmp_path):
+    """Answers that arrived before the banner (or before the port died) are
+    acknowledgements: a segment's sync among them proves it executed, so the
+    resume starts after it.  Answers after a banner acknowledge nothing."""
+    lines = ["G21 G90 G17 G94", "(seg 1:1)", "G1 X10 Y0 F1000", "G4 P0",
+             "(seg 1:2)", "G1 X10 Y10", "G4 P0", "(seg 1:3)", "G1 X0 Y10", "G4 P0",
+             "(end item 1)", "M2"]
+    job = job_from_lines("burst.nc", lines)
+    link = GrblLink("burst://", **dict(FAST, link_timeout=0.3, reset_timeout=0.3))
+    link.ser = BurstPort(link, 5, then)            # answers lines 1..5 (through 1:2's sync)
+    link.info.rx_size = 1024
+    jpath = str(tmp_path / "burst.journal")
+    journal = Journal.open(jpath, job, "char-count")
+    res = link.stream(job, journal, "char-count")
+    journal.close()
+    assert res.status == ("reset" if then == "reset" else "lost")
+    state = load_journal(jpath)
+    assert sorted(state.acked) == [0, 2, 3, 5, 6]
+    assert state.done_segments() == ["1:1", "1:2"] and state.first_incomplete() == "1:3"
+    if then == "reset":
+        assert res.line == 9                       # the first line not answered

@@ -11,7 +11,8 @@ from LeatherCutWorkbench.core.model import CutItem, CutPlan
 from LeatherCutWorkbench.post import gcode
 from LeatherCutWorkbench.post.gcode_reader import (GcodeError, interpreter_for, read_program,
                                                    traced_cuts)
-from LeatherCutWorkbench.post.profiles import load_profile
+from LeatherCutWorkbench.core.errors import InputError
+from LeatherCutWorkbench.post.profiles import load_profile, profile_from_dict
 
 from post_helpers import arc_mid, dist_to_segment, sample_plan
 
@@ -40,7 +41,10 @@ def ang_diff(a, b):
 def test_traced_path_equals_plan(name):
     profile = load_profile(name)
     plan = sample_plan(dx=10, dy=20)
-    text = gcode.export(plan, profile)
+    assert_traced_path_equals_plan(gcode.export(plan, profile), plan, profile)
+
+
+def assert_traced_path_equals_plan(text, plan, profile):
     lines = text.splitlines()
     segs, order = gcode.segment_map(lines)
     it = trace(text, profile)
@@ -248,3 +252,47 @@ def test_feed_keeps_xy_speed_while_the_knife_turns(name):
             raised += m.feed > profile.cut_feed
     if profile.rotary_in_feed and profile.units_per_turn == 360:
         assert raised > 10 and capped > 0
+
+
+@pytest.mark.parametrize("name", GCODE_PROFILES)
+def test_sync_every_segment_profile(name):
+    """``sync_every_segment``: a ``G4 P0`` closes every segment, after its last
+    cutting move and inside the segment (so its ok proves the segment was
+    executed); the traced path still equals the plan.  Shipped profiles keep
+    the item syncs only."""
+    base = load_profile(name)
+    assert base.sync_every_segment is False
+    profile = profile_from_dict({**base.to_json(), "sync_every_segment": True})
+    plan = sample_plan(dx=10, dy=20)
+    plan.items[2].lifts = [3]                      # a planned lift at a segment start too
+    text = gcode.export(plan, profile)
+    assert_traced_path_equals_plan(text, plan, profile)
+    lines = text.splitlines()
+    segs, order = gcode.segment_map(lines)
+    n_items, n_segs = len(plan.items), len(order)
+    plain = gcode.export(plan, base).splitlines()
+    assert plain.count("G4 P0") == n_items          # item syncs only
+    assert lines.count("G4 P0") == n_items + n_segs
+    it = trace(text, profile)
+    moving = {m.line_no for m in it.moves if m.kind in ("rapid", "line", "arc")}
+    for sid in order:
+        body = [n for n, s in enumerate(segs) if s == sid and not lines[n].startswith("(")]
+        assert lines[body[-1]] == "G4 P0", sid       # the segment ends with its sync
+        assert [lines[n] for n in body].count("G4 P0") == 1, sid
+        cuts = [n for n in body if n + 1 in moving]
+        assert cuts and cuts[-1] < body[-1], sid     # after the last move of the segment
+    # the next segment starts right after the sync (its lift, if any, follows)
+    for a, b in zip(order, order[1:]):
+        if a.split(":")[0] == b.split(":")[0]:
+            last_a = max(n for n, s in enumerate(segs) if s == a)
+            assert lines[last_a] == "G4 P0" and lines[last_a + 1] == f"(seg {b})"
+
+
+def test_sync_every_segment_is_validated(tmp_path):
+    data = load_profile("grblhal_tangential").to_json()
+    with pytest.raises(InputError, match="sync_every_segment"):
+        profile_from_dict({**data, "sync_every_segment": "yes"}, source="bad.json")
+    hpgl = load_profile("hpgl_plotter").to_json()
+    with pytest.raises(InputError, match="sync_every_segment"):
+        profile_from_dict({**hpgl, "sync_every_segment": True}, source="plotter.json")
+    assert profile_from_dict({**hpgl, "sync_every_segment": False}).sync_every_segment is False

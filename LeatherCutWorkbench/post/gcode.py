@@ -16,6 +16,7 @@ Output shape (one block per line, ``\\n`` line ends, comments in parentheses)::
     G1 X.. Y.. C.. F6000         cut (C follows the tangent)
     G2 X.. Y.. I.. J.. C..       arc, C interpolated with the arc
     G0 Z5 / G0 C.. / G1 Z-1.2    lift, turn in the air, plunge (> lift angle)
+    G4 P0                        per-segment sync (profile sync_every_segment)
     G0 Z5                        knife up after the item
     G4 P0                        sync: its ok means the item was executed
     ...                          footer template (M2)

@@ -77,6 +77,9 @@ class MachineProfile:
     line_numbers: bool = False
     max_line_length: int = 70             # characters sent per line (GRBL: 80 incl. EOL)
     sync_at_items: bool = True            # G4 P0 after each item: executed-progress points
+    sync_every_segment: bool = False      # G4 P0 after each segment: exact resume after a
+                                          # position-losing fault, but the planner empties
+                                          # (the head stops) at every segment end
     homing: bool = False                  # machine homes with $H (resume re-homes)
     # live link (GRBL family)
     baud: int = 115200
@@ -279,6 +282,9 @@ def _validate(p: MachineProfile, source: str) -> None:
     for key in ("settle_dwell", "pierce_delay", "cooling_delay", "overcut"):
         if getattr(p, key) < 0:
             fail(f"{key} must not be negative")
+    if p.sync_every_segment and not p.is_gcode:
+        fail(f"sync_every_segment needs a G-code dialect (G4 P0); {p.dialect} has no "
+             "synchronising command")
 
 
 def save_user_profile(profile: MachineProfile) -> str:

@@ -4,7 +4,9 @@ A :class:`Move` is a rapid, a straight or circular cut, a knife/torch up or down
 a turn of the knife in the air, an I/O event, a dwell or a sync point.  Every
 move carries the id of the plan segment it belongs to (``"<item>:<segment>"``,
 both 1-based, the id the live link journals and resumes from; ``""`` for moves
-between segments such as the header or the lift after an item).
+between segments such as the header or the lift after an item).  Sync points
+close every item (``sync_at_items``) and, with ``sync_every_segment``, every
+segment too (after its last cut, carrying that segment's id).
 
 Knife heading (tangential knives only): the heading of the path tangent in
 degrees (0 = +X, counter-clockwise positive) plus the profile's
@@ -181,7 +183,7 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         if profile.pierce_delay > 0:
             add("dwell", seg=ids[0], seconds=profile.pierce_delay, item=i)
         first = True
-        for seg, sid, planned_lift in work:
+        for w, (seg, sid, planned_lift) in enumerate(work):
             for k, piece in enumerate(_pieces(seg, profile)):
                 if piece.length <= 1e-9:
                     continue
@@ -207,6 +209,9 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
                     add("line", seg=sid, x=end[0], y=end[1], heading=heading,
                         feed=profile.cut_feed, item=i)
                 here = end
+            if profile.sync_every_segment and (w + 1 == len(work) or work[w + 1][1] != sid):
+                # the segment's last line: its ok means the segment was executed
+                add("sync", seg=sid, item=i)
         add("up", item=i)
         if profile.cooling_delay > 0:
             add("dwell", seconds=profile.cooling_delay, item=i)

@@ -177,6 +177,7 @@ class GrblLink:
     def _handle(self, line: str) -> None:
         r = parse_reply(line)
         if r.kind in ("ok", "error"):
+            r.epoch = self._banners
             self._acks.put(r)
         elif r.kind == "status":
             if "WCO" in r.fields:
@@ -390,9 +391,23 @@ class GrblLink:
                 return None
             return result("error", k, f"{r.raw}: {r.text}")
 
+        def take_received() -> None:
+            """Journal the answers that arrived before the reset or the loss of
+            the link (they may acknowledge a sync line: proof of execution);
+            answers after a banner come from the reset controller and
+            acknowledge nothing of this stream."""
+            while pending:
+                try:
+                    r = self._acks.get_nowait()
+                except queue.Empty:
+                    return
+                if r.epoch == banners:
+                    take(r)
+
         while True:
             now = time.monotonic()
             if self._lost:
+                take_received()
                 return result("lost", pending[0][0] if pending else None,
                               f"link lost: {self._lost}; job state unknown")
             if self._alarm is not None:
@@ -401,6 +416,7 @@ class GrblLink:
                 safe = self._stop_safely(lambda r: take(r), trust_alarm=a.code == 2)
                 return result("alarm", k, f"{a.raw}: {a.text}", safe)
             if self._banners != banners:
+                take_received()
                 k = pending[0][0] if pending else None
                 safe = self._after_reset(spontaneous=True)
                 return result("reset", k, "the controller reset itself (banner received): lines "

@@ -72,6 +72,7 @@ class Reply:
     state: str = ""
     fields: Dict[str, str] = field(default_factory=dict)
     text: str = ""
+    epoch: int = 0            # banners (controller resets) seen before this line arrived
 
 
 def parse_reply(line: str) -> Reply:

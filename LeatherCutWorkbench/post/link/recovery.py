@@ -17,8 +17,10 @@ module decides what was executed, with the best evidence the journal holds:
    a synchronising line proves: GRBL acknowledges ``G4`` and the spindle and
    coolant words ``M3 M4 M5 M7 M8 M9`` only after the planner ran empty, so
    every acknowledged line up to the last acknowledged one of those was
-   executed.  The item being cut may then be cut again from its start (its
-   slit is retraced), which is the price of not losing anything.
+   executed.  With the item syncs of the shipped profiles the item being cut
+   may then be cut again from its start (its slit is retraced), the price of
+   not losing anything; with the profile's ``sync_every_segment`` each
+   segment ends with a ``G4 P0`` and only the interrupted segment is re-cut.
 
 Lines a controller refused (``error:N``) are never acknowledged and so never
 executed: their segment is cut again even when later segments were executed.
