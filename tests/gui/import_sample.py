@@ -2,10 +2,11 @@
 then Recognise (panel) and Run job (toolbar command).  Writes
 ``$LC_OUT/result.json`` and exits 0 only when every check passed."""
 
-import json
 import os
 import sys
-import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 import FreeCAD
 import FreeCADGui as Gui
@@ -13,12 +14,6 @@ from PySide import QtCore
 
 OUT = os.environ["LC_OUT"]
 SAMPLE = os.environ["LC_SAMPLE"]
-results = []
-
-
-def check(name, cond, detail=""):
-    results.append({"check": name, "ok": bool(cond), "detail": str(detail)})
-    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)}", flush=True)
 
 
 def check_preferences_page():
@@ -77,17 +72,7 @@ def steps():
 
 
 def main():
-    code = 1
-    try:
-        os.makedirs(OUT, exist_ok=True)
-        steps()
-        code = 0 if results and all(r["ok"] for r in results) else 1
-    except Exception:
-        traceback.print_exc()
-    with open(os.path.join(OUT, "result.json"), "w") as fh:
-        json.dump(results, fh, indent=1)
-    sys.stdout.flush()
-    os._exit(code)
+    finish(steps, OUT)
 
 
 QtCore.QTimer.singleShot(500, main)

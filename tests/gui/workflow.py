@@ -12,26 +12,19 @@ undoes, saves, closes and reopens the document.  Each check prints
 Environment: ``LC_SAMPLE`` (DXF), ``LC_OUT`` (output folder).
 """
 
-import json
 import os
 import sys
 import time
-import traceback
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checks import check, finish  # noqa: E402
 
 import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-T0 = time.monotonic()
 OUT = os.environ["LC_OUT"]
 SAMPLE = os.environ["LC_SAMPLE"]
-results = []
-
-
-def check(name, cond, detail=""):
-    results.append({"check": name, "ok": bool(cond), "detail": str(detail)})
-    print(f"CHECK {name} {'ok' if cond else 'FAILED: ' + str(detail)} [{time.monotonic() - T0:.1f} s]", flush=True)
-    return cond
 
 
 def pump(seconds=0.2):
@@ -273,19 +266,7 @@ def steps():
 
 
 def main():
-    code = 1
-    try:
-        os.makedirs(OUT, exist_ok=True)
-        steps()
-        code = 0 if results and all(r["ok"] for r in results) else 1
-    except Exception:
-        traceback.print_exc()
-        results.append({"check": "no exception", "ok": False, "detail": traceback.format_exc()})
-    with open(os.path.join(OUT, "result.json"), "w") as fh:
-        json.dump(results, fh, indent=1)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)
+    finish(steps, OUT)
 
 
 QtCore.QTimer.singleShot(500, main)
