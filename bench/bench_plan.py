@@ -7,18 +7,28 @@ Prints Markdown tables:
 1. the 62-part synthetic leather job (1000 x 1000 mm hide, 9 parts with a
    hole, shuffled drawing order; tests/plan_shapes.leather_job): drawing
    order, NN, ACO, GA, and the certified lower bound;
-2. scaling 100 -> 5,000 contours with ~20 entry candidates each: NN, GA (time
-   budget per size), and a strong reference where feasible.
+2. GTSPLIB-style random instances through ``solve_gtsp``;
+3. scaling 100 -> 5,000 contours with ~20 entry candidates each: NN, GA (time
+   budget per size) and the references below where feasible.
 
-Reference ("LKH+DP"): LKH-3 through the ``elkai`` package (non-commercial
-licence: benchmark-only, ``pip install -r bench/requirements.txt``) solves the
-TSP through the currently chosen entry points; the exact entry DP then
-re-chooses the entries for LKH's order; repeated until no gain (max 4
-rounds), starting from nearest-neighbour entries.  The Noon-Bean GTSP->ATSP
-transform would need a full 20,000 x 20,000 text matrix for 1,000 contours x
-20 candidates, which elkai cannot take; on the small hide job it is run as
-well ("LKH Noon-Bean + DP").  Times are wall and CPU (time.process_time)
-seconds: the machine is shared, CPU seconds are the comparable figure.
+References (bench/gtsp_reference.py; ``pip install -r bench/requirements.txt``):
+
+* LKH-3 Noon-Bean + DP: the GTSP as an asymmetric TSP (Noon-Bean transform)
+  solved by LKH-3 through ``elkai`` (non-commercial licence: benchmark only),
+  entries re-chosen by the exact DP.  Independent of our search; run up to
+  ``--nb-max`` contours (1,000 x ~18 candidates = a 17,777-node explicit matrix,
+  ~1.9 GB of TSPLIB text, in 1 mm units: elkai crashes on text over 2 GiB).
+* LKH-3 strong: the same with MAX_CANDIDATES = 30, MAX_TRIALS = 1000 and
+  several runs (``--strong-max``, ``--strong-runs``): the setting that reached
+  the proven optima of GTSPLIB instances in the team's measurements.
+* PyVRP client groups (MIT): one mutually exclusive group per contour.
+* LKH + DP polishing: LKH-3 on the TSP through the chosen entries alternated
+  with the DP, started from NN entries and from the GA's entries (not
+  independent: it measures what LKH still finds in the GA's plan).
+
+The references ignore precedence (the scaling jobs have none).  Times are wall
+and CPU (time.process_time) seconds: CPU seconds are the comparable figure on
+a shared machine.
 """
 
 from __future__ import annotations
@@ -28,7 +38,6 @@ import datetime
 import math
 import os
 import sys
-import time
 
 import numpy as np
 
@@ -39,90 +48,20 @@ sys.path.insert(0, os.path.join(ROOT, "tests"))
 
 from LeatherCutWorkbench.core.pathplan import PlanOptions, plan  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.bounds import lower_bound  # noqa: E402
-from LeatherCutWorkbench.core.pathplan.dp import optimal_entries  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.ga import run_ga  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.items import build_items  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.nn import nearest_neighbour  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.planner import build_instance  # noqa: E402
 from plan_shapes import leather_job  # noqa: E402
 
-try:
-    from elkai import _elkai
-except ImportError:  # reference is optional
-    _elkai = None
+from gtsp_reference import (HAVE_ELKAI, HAVE_PYVRP, STRONG_LKH, clock,  # noqa: E402
+                            lkh_dp_reference, noon_bean_reference, pyvrp_reference)
 
 
 def instance_for(parts, spacing: float):
     items, preds, _ = build_items(parts, [], entry_spacing=spacing, max_candidates=64,
                                   cut_open_chains=False, common_edge_tol=0.05)
     return build_instance(items, preds, (0.0, 0.0))
-
-
-def lkh_tour(points: np.ndarray, seed: int = 1) -> list:
-    """LKH-3 (elkai) TSP tour through ``points`` (mm, scaled x100 to integers)."""
-    m = len(points)
-    lines = [f"TYPE : TSP\nDIMENSION : {m}\nEDGE_WEIGHT_TYPE : EUC_2D\nNODE_COORD_SECTION"]
-    lines += [f"{i + 1} {x * 100:.1f} {y * 100:.1f}" for i, (x, y) in enumerate(points)]
-    params = f"RUNS = 1\nMAX_TRIALS = {m}\nSEED = {seed}\nPROBLEM_FILE = :stdin:\n"
-    sol = [i - 1 for i in _elkai.solve_problem(params, "\n".join(lines) + "\nEOF\n")]
-    i0 = sol.index(0)
-    return sol[i0:] + sol[:i0]
-
-
-def lkh_dp_reference(inst, rounds: int = 4, choice=None):
-    """Alternate LKH (order through the chosen entries) and the exact DP,
-    starting from ``choice`` (default: nearest-neighbour entries)."""
-    if choice is None:
-        _, choice = nearest_neighbour(inst)
-    best = math.inf
-    for _ in range(rounds):
-        pts = np.array([inst.S[choice[k]] for k in range(inst.m)])
-        order = lkh_tour(pts)
-        choice2, cost = optimal_entries(inst, order)
-        if cost >= best - 1e-6:
-            break
-        best, choice = cost, choice2
-    return best
-
-
-NB_RUNS = 1
-NB_EXTRA = ""
-
-
-def noon_bean_reference(inst) -> float:
-    """LKH-3 on the Noon-Bean ATSP of the GTSP (symmetric candidates), then DP."""
-    n = inst.n
-    pts = inst.S
-    D = np.hypot(pts[:, None, 0] - pts[None, :, 0], pts[:, None, 1] - pts[None, :, 1])
-    D10 = np.round(D * 10.0)                       # 0.1 mm units
-    big = 4.0 * D10.max() + 1.0                    # charged once per cluster exit
-    A = np.full((n, n), 2.0 * big + D10.max())     # forbidden arcs
-    for C in inst.cands:
-        c = [int(x) for x in C]
-        others = np.ones(n, dtype=bool)
-        others[c] = False
-        for i, g in enumerate(c):
-            nxt = c[(i + 1) % len(c)]
-            # entered at nxt, the zero-cost cycle ends at g: leaving from g is
-            # really leaving from nxt
-            A[g, others] = D10[nxt, others] + big
-            if len(c) > 1:
-                A[g, nxt] = 0.0
-    A = A.astype(np.int64)
-    lines = [f"TYPE : ATSP\nDIMENSION : {n}\nEDGE_WEIGHT_TYPE : EXPLICIT\n"
-             f"EDGE_WEIGHT_FORMAT : FULL_MATRIX\nEDGE_WEIGHT_SECTION"]
-    lines += [" ".join(map(str, row)) for row in A.tolist()]
-    params = f"RUNS = {NB_RUNS}\nMAX_TRIALS = {n}\nSEED = 1\nPROBLEM_FILE = :stdin:\n{NB_EXTRA}"
-    sol = [i - 1 for i in _elkai.solve_problem(params, "\n".join(lines) + "\nEOF\n")]
-    order, seen = [], set()
-    for g in sol:
-        k = int(inst.item_of[g])
-        if k not in seen:
-            seen.add(k)
-            order.append(k)
-    i0 = order.index(0)
-    order = order[i0:] + order[:i0]
-    return optimal_entries(inst, order)[1]
 
 
 def fst_instance(n: int, seed: int):
@@ -153,7 +92,6 @@ def fst_instance(n: int, seed: int):
 
 def fst_table(sizes, time_limit: float, with_ref: bool) -> str:
     from LeatherCutWorkbench.core.pathplan import solve_gtsp
-    global NB_RUNS
     rows = ["| nodes | clusters | solve_gtsp (GA) | GA wall s | GA CPU s | LKH-3 Noon-Bean + DP, RUNS=5 | LKH CPU s | GA vs LKH |",
             "|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for n in sizes:
@@ -162,20 +100,12 @@ def fst_table(sizes, time_limit: float, with_ref: bool) -> str:
         tour, w, c = clock(lambda: solve_gtsp(D, clusters, time_limit=time_limit, seed=1))
         ga = float(sum(D[a, b] for a, b in zip(tour, tour[1:] + tour[:1])))
         ref_s, rc_s, gap = "—", "—", "—"
-        if with_ref and _elkai is not None:
-            NB_RUNS = 5
-            ref, _, rc = clock(lambda: noon_bean_reference(inst))
-            NB_RUNS = 1
+        if with_ref and HAVE_ELKAI:
+            (ref, _), _, rc = clock(lambda: noon_bean_reference(inst, runs=5))
             ref_s, rc_s, gap = f"{ref:.1f}", f"{rc:.1f}", f"{100 * (ga / ref - 1):+.2f} %"
         rows.append(f"| {n} | {len(clusters)} | {ga:.1f} | {w:.1f} | {c:.1f} | {ref_s} | {rc_s} | {gap} |")
         print(rows[-1], file=sys.stderr, flush=True)
     return "\n".join(rows)
-
-
-def clock(fn):
-    w, c = time.perf_counter(), time.process_time()
-    out = fn()
-    return out, time.perf_counter() - w, time.process_time() - c
 
 
 def hide_table(time_limit: float, with_ref: bool) -> str:
@@ -198,13 +128,14 @@ def hide_table(time_limit: float, with_ref: bool) -> str:
         rows.append(f"| {label} | {idle:.0f} | {100 * (idle / draw - 1):+.1f} % | "
                     f"{100 * (idle / nn - 1):+.1f} % | {w:.2f} | {c:.2f} |")
     inst = instance_for(parts, 20.0)
-    if with_ref and _elkai is not None:
-        global NB_RUNS
-        NB_RUNS = 3
-        (ref, w, c) = clock(lambda: noon_bean_reference(inst))
-        NB_RUNS = 1
+    if with_ref and HAVE_ELKAI:
+        (ref, _), w, c = clock(lambda: noon_bean_reference(inst, runs=3))
         rows.append(f"| LKH-3 Noon-Bean + DP, RUNS=3 (elkai, reference) | {ref:.0f} | "
                     f"{100 * (ref / draw - 1):+.1f} % | {100 * (ref / nn - 1):+.1f} % | {w:.1f} | {c:.1f} |")
+        if HAVE_PYVRP:
+            (ref3, _), w, c = clock(lambda: pyvrp_reference(inst, seconds=60.0))
+            rows.append(f"| PyVRP client groups, 60 s (reference) | {ref3:.0f} | "
+                        f"{100 * (ref3 / draw - 1):+.1f} % | {100 * (ref3 / nn - 1):+.1f} % | {w:.1f} | {c:.1f} |")
         (ref2, w, c) = clock(lambda: lkh_dp_reference(inst))
         rows.append(f"| LKH-3 + DP alternation (reference) | {ref2:.0f} | "
                     f"{100 * (ref2 / draw - 1):+.1f} % | {100 * (ref2 / nn - 1):+.1f} % | {w:.1f} | {c:.1f} |")
@@ -217,10 +148,21 @@ def hide_table(time_limit: float, with_ref: bool) -> str:
     return head + "\n\n" + "\n".join(rows)
 
 
-def scaling_table(sizes, time_for, with_ref: bool, ref_max: int) -> str:
-    rows = ["| contours | candidates | NN idle | GA idle | GA vs NN | reference: best (from NN / from GA entries) | GA vs reference "
-            "| GA wall s | GA CPU s | GA generations | ref CPU s | lower bound |",
-            "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+def noon_bean_unit(inst) -> float:
+    """Matrix unit (mm) for the Noon-Bean text: 0.1 mm while the TSPLIB text
+    stays below elkai's 2 GiB string limit (it crashes above), else 1 mm (the
+    DP re-evaluates LKH's order with exact distances either way)."""
+    return 0.1 if inst.n ** 2 * 7 < 1.9e9 else 1.0
+
+
+def scaling_table(sizes, time_for, a) -> str:
+    """GA against NN, the independent references (LKH-3 Noon-Bean, PyVRP) and
+    LKH + DP polishing, per size; ``a`` holds the command-line limits."""
+    rows = ["| contours | candidates | NN idle | GA idle | GA vs NN | GA wall s | GA CPU s | GA generations "
+            "| LKH-3 Noon–Bean + DP | its CPU s | GA vs LKH-3 | LKH-3 strong | its CPU s | GA vs strong "
+            "| PyVRP groups | GA vs PyVRP "
+            "| LKH + DP polishing | GA vs polishing | lower bound |",
+            "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for m in sizes:
         size = 1000.0 * math.sqrt(m / 62.0)
         parts = leather_job(seed=m, n_parts=m, n_holes=0, size=size)
@@ -229,17 +171,31 @@ def scaling_table(sizes, time_for, with_ref: bool, ref_max: int) -> str:
         order, choice = nearest_neighbour(inst)
         nn = inst.tour_cost(order, choice)
         r, w, c = clock(lambda: run_ga(inst, time_limit=tl, seed=1))
-        ref_s, ref_c = "—", "—"
-        gap = "—"
-        if with_ref and _elkai is not None and m <= ref_max:
-            ref1, _, rc1 = clock(lambda: lkh_dp_reference(inst))
-            ref2, _, rc2 = clock(lambda: lkh_dp_reference(inst, choice=r.choice))
-            ref = min(ref1, ref2)
-            ref_s, ref_c = f"{ref:.0f} ({ref1:.0f} / {ref2:.0f})", f"{rc1 + rc2:.1f}"
-            gap = f"{100 * (r.cost / ref - 1):+.2f} %"
-        lb, _ = lower_bound(inst, r.cost, time_budget=5.0, max_items_hk=1200)
-        rows.append(f"| {m} | {inst.n - 1} | {nn:.0f} | {r.cost:.0f} | {100 * (r.cost / nn - 1):+.1f} % | "
-                    f"{ref_s} | {gap} | {w:.1f} | {c:.1f} | {r.iterations} | {ref_c} | {lb:.0f} |")
+        ga = r.cost
+
+        def gap(ref):
+            return f"{100 * (ga / ref - 1):+.2f} %"
+        nb = nb_c = nb_gap = st = st_c = st_gap = pv = pv_gap = pol = pol_gap = "—"
+        if HAVE_ELKAI and m <= a.nb_max:
+            period = f"INITIAL_PERIOD = {a.nb_period}\n" if a.nb_period else ""
+            (ref, _), _, rc = clock(lambda: noon_bean_reference(
+                inst, runs=1, time_limit=a.nb_time, unit_mm=noon_bean_unit(inst), extra=period))
+            nb, nb_c, nb_gap = f"{ref:.0f}", f"{rc:.0f}", gap(ref)
+        if HAVE_ELKAI and m <= a.strong_max:
+            (ref, _), _, rc = clock(lambda: noon_bean_reference(
+                inst, runs=a.strong_runs, extra=STRONG_LKH, unit_mm=noon_bean_unit(inst)))
+            st, st_c, st_gap = f"{ref:.0f}", f"{rc:.0f}", gap(ref)
+        if HAVE_PYVRP and m <= a.pyvrp_max:
+            ref, _ = pyvrp_reference(inst, seconds=a.pyvrp_time)
+            pv, pv_gap = f"{ref:.0f}", gap(ref)
+        if HAVE_ELKAI and m <= a.ref_max:
+            ref = min(lkh_dp_reference(inst), lkh_dp_reference(inst, choice=r.choice))
+            pol, pol_gap = f"{ref:.0f}", gap(ref)
+        lb, _ = lower_bound(inst, ga, time_budget=5.0, max_items_hk=1200)
+        rows.append(f"| {m} | {inst.n - 1} | {nn:.0f} | {ga:.0f} | {100 * (ga / nn - 1):+.1f} % | "
+                    f"{w:.1f} | {c:.1f} | {r.iterations} ({r.stopped_by}) | {nb} | {nb_c} | {nb_gap} | "
+                    f"{st} | {st_c} | {st_gap} | "
+                    f"{pv} | {pv_gap} | {pol} | {pol_gap} | {lb:.0f} |")
         print(rows[-1], file=sys.stderr, flush=True)
     return "\n".join(rows)
 
@@ -250,12 +206,23 @@ def main() -> None:
     ap.add_argument("--sizes", default="100,200,500,1000,2000,5000")
     ap.add_argument("--time", type=float, default=25.0, help="GA time limit (s) for 1,000 contours")
     ap.add_argument("--hide-time", type=float, default=2.0, help="GA/ACO time limit on the hide job")
-    ap.add_argument("--no-ref", action="store_true", help="skip the LKH reference")
-    ap.add_argument("--ref-max", type=int, default=2000, help="largest size given a reference")
+    ap.add_argument("--no-ref", action="store_true", help="skip every reference solver")
+    ap.add_argument("--ref-max", type=int, default=2000, help="largest size given LKH + DP polishing")
+    ap.add_argument("--nb-max", type=int, default=1000, help="largest size given LKH-3 Noon-Bean")
+    ap.add_argument("--nb-time", type=float, default=1800.0, help="LKH-3 TIME_LIMIT (s) at scale")
+    ap.add_argument("--nb-period", type=int, default=0,
+                    help="LKH-3 INITIAL_PERIOD of the Noon-Bean ascent (default: LKH's, n/2)")
+    ap.add_argument("--strong-max", type=int, default=200,
+                    help="largest size given LKH-3 with strong parameters (MAX_CANDIDATES 30)")
+    ap.add_argument("--strong-runs", type=int, default=3, help="LKH-3 runs of the strong reference")
+    ap.add_argument("--pyvrp-max", type=int, default=500, help="largest size given PyVRP")
+    ap.add_argument("--pyvrp-time", type=float, default=60.0, help="PyVRP wall seconds")
     ap.add_argument("--skip-hide", action="store_true")
     ap.add_argument("--fst", default="200,400,1000", help="GTSPLIB-style node counts ('' = skip)")
     ap.add_argument("--fst-time", type=float, default=10.0)
     a = ap.parse_args()
+    if a.no_ref:
+        a.ref_max = a.nb_max = a.strong_max = a.pyvrp_max = 0
     sizes = [int(s) for s in a.sizes.split(",")]
     if a.quick:
         sizes = [s for s in sizes if s <= 500]
@@ -264,7 +231,7 @@ def main() -> None:
         return max(2.0, a.time * m / 1000.0) if m <= 1000 else a.time * m / 1000.0
 
     print(f"# bench_plan.py — {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, "
-          f"elkai {'present' if _elkai else 'absent (no reference)'}\n")
+          f"elkai {'present' if HAVE_ELKAI else 'absent'}, pyvrp {'present' if HAVE_PYVRP else 'absent'}\n")
     if not a.skip_hide:
         print("## 62-part leather job\n")
         print(hide_table(a.hide_time, not a.no_ref))
@@ -274,7 +241,7 @@ def main() -> None:
         print(fst_table([int(v) for v in a.fst.split(",")], a.fst_time, not a.no_ref))
         print()
     print("## Scaling (GA time limit = %g s x contours / 1000, min 2 s)\n" % a.time)
-    print(scaling_table(sizes, time_for, not a.no_ref, a.ref_max))
+    print(scaling_table(sizes, time_for, a))
 
 
 if __name__ == "__main__":

@@ -156,6 +156,39 @@ def test_same_seed_same_plan():
     assert a.metrics["idle_mm"] == b.metrics["idle_mm"]
 
 
+@pytest.mark.parametrize("method", ["ga", "aco"])
+def test_iteration_budget_gives_the_same_plan_at_any_speed(method):
+    """With an iteration budget the plan does not depend on how fast the
+    machine is: a run slowed down 200-fold in its progress hook (as a busy GUI
+    or a loaded machine would) returns exactly the plan of an unhindered run."""
+    import time as _time
+    parts = leather_job(seed=3, n_parts=40, n_holes=4, size=800.0)
+    budget = 6
+    fast = plan(parts, [], PlanOptions(method=method, seed=5, max_iterations=budget, time_limit=120))
+    calls = []
+
+    def slow(frac, msg):
+        calls.append(msg)
+        _time.sleep(0.02)
+    slow_plan = plan(parts, [], PlanOptions(method=method, seed=5, max_iterations=budget,
+                                            time_limit=120), progress=slow)
+    assert len(calls) >= budget
+    for p in (fast, slow_plan):
+        assert p.metrics["stopped_by"] in ("iterations", "converged")
+        assert p.metrics["iterations"] <= budget
+    sig = lambda p: [(it.contour_id, tuple(round(v, 9) for v in it.entry)) for it in p.items]
+    assert sig(fast) == sig(slow_plan)
+    assert fast.metrics["idle_mm"] == slow_plan.metrics["idle_mm"]
+
+
+def test_time_cap_is_reported():
+    """A budget too short to converge says so: stopped_by == "time"."""
+    parts = leather_job(seed=4, n_parts=300, n_holes=0, size=2200.0)
+    p = plan(parts, [], PlanOptions(method="ga", seed=1, time_limit=0.3))
+    assert p.metrics["stopped_by"] == "time" and not p.metrics["converged"]
+    assert p.metrics["idle_mm"] <= p.metrics["nn_idle_mm"] + 1e-6
+
+
 def test_leather_job_ga_beats_nn_and_drawing_order():
     parts = leather_job(seed=1)
     nn = plan(parts, [], PlanOptions(method="nn"))

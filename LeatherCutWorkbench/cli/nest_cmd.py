@@ -9,7 +9,7 @@ from typing import Any, Dict, List, Optional
 
 from . import Report, add_common_options
 from ..core.errors import InputError
-from .stages import add_stage_options, job_options, non_negative, positive, progress_bar
+from .stages import add_stage_options, job_options, non_negative, positive, positive_int, progress_bar
 
 def _size(text: str):
     try:
@@ -52,9 +52,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="nest N copies of every recognised part (default: each part's quantity)")
     g.add_argument(f"--{pre}time", dest="nest_time", type=non_negative, default=10.0, metavar="S",
                    help="seconds of improvement search after the first layout (default 10; 0 = none)")
-    g.add_argument(f"--{pre}evaluations", dest="nest_evaluations", type=int, default=None, metavar="N",
+    g.add_argument(f"--{pre}evaluations", dest="nest_evaluations", type=positive_int, default=None, metavar="N",
                    help="stop each worker after N layouts: same seed, same result on any machine")
-    g.add_argument(f"--{pre}workers", dest="nest_workers", type=int, default=None, metavar="N",
+    g.add_argument(f"--{pre}workers", dest="nest_workers", type=positive_int, default=None, metavar="N",
                    help="worker processes (default: all cores)")
     g.add_argument(f"--{pre}engine", dest="nest_engine", choices=["own", "sparrow"], default="own",
                    help="own (default; every container and constraint) or sparrow "

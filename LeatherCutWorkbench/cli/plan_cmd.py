@@ -10,7 +10,7 @@ from typing import Any, Dict
 
 from . import Report, add_common_options
 from ..core.errors import InputError
-from .stages import add_stage_options, job_options, positive, progress_bar
+from .stages import add_stage_options, job_options, positive, positive_int, progress_bar
 
 
 def _angle(text: str):
@@ -44,6 +44,10 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                         "nn = nearest neighbour (fast baseline)")
     g.add_argument(f"--{pre}time", dest="plan_time", type=positive, default=10.0, metavar="S",
                    help="planning time budget in seconds (default 10; stops earlier when converged)")
+    g.add_argument(f"--{pre}iterations", dest="plan_iterations", type=positive_int, default=None,
+                   metavar="N", help="stop after N GA generations / ACO iterations: with the same "
+                                     "seed the plan is then the same on any machine (the time "
+                                     "budget still caps the run)")
     g.add_argument("--entry-spacing", dest="plan_entry_spacing", type=positive, default=20.0,
                    metavar="MM", help="entry candidates every MM mm along edges, plus every vertex "
                                       "(default 20)")
@@ -70,6 +74,7 @@ def options_from_args(args: argparse.Namespace, machine: Any = None):
     from ..core.pathplan import PlanOptions
 
     o = PlanOptions(method=args.plan_method, time_limit=args.plan_time,
+                    max_iterations=args.plan_iterations,
                     seed=getattr(args, "seed", 1), entry_spacing=args.plan_entry_spacing,
                     cut_open_chains=not args.plan_no_open_chains)
     if machine is not None:

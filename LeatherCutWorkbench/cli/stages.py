@@ -68,6 +68,17 @@ def positive(text: str) -> float:
     return _number(text, lambda v: v > 0, "> 0")
 
 
+def positive_int(text: str) -> int:
+    """argparse type: a whole number >= 1."""
+    try:
+        v = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}")
+    if v < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
+    return v
+
+
 def non_negative(text: str) -> float:
     """argparse type: a number >= 0."""
     return _number(text, lambda v: v >= 0, ">= 0")

@@ -25,6 +25,14 @@ METRICS = [
     ("time_s", QT_TRANSLATE_NOOP("LeatherCut", "Planning time"), "s", "{:.2f}"),
 ]
 
+#: why the search ended (metrics["stopped_by"]) -> panel text; "time" means a faster
+#: machine or a longer budget could still find a shorter path
+STOP_REASONS = {
+    "converged": QT_TRANSLATE_NOOP("LeatherCut", "converged"),
+    "iterations": QT_TRANSLATE_NOOP("LeatherCut", "iteration budget reached"),
+    "time": QT_TRANSLATE_NOOP("LeatherCut", "time budget reached (not converged)"),
+}
+
 
 def metric_rows(metrics: dict):
     """(label, text) rows for every metric the plan reports, known ones first."""
@@ -37,6 +45,9 @@ def metric_rows(metrics: dict):
             unit = "" if fmt == "{:.1%}" else unit
             rows.append((translate("LeatherCut", label), f"{text} {unit}".strip()))
             seen.add(key)
+    if metrics.get("stopped_by") in STOP_REASONS:
+        rows.append((translate("LeatherCut", "Search ended"),
+                     translate("LeatherCut", STOP_REASONS[metrics["stopped_by"]])))
     for key, v in sorted(metrics.items()):
         if key not in seen and isinstance(v, (int, float)) and not isinstance(v, bool):
             rows.append((key.replace("_", " "), f"{v:.4g}" if isinstance(v, float) else str(v)))

@@ -145,6 +145,11 @@ def steps():
     table = p.form.findChild(QtGui.QTableWidget, "metricsTable")
     labels = [table.item(r, 0).text() for r in range(table.rowCount())]
     check("metrics in panel", "Idle travel" in labels and "Knife lifts" in labels, labels)
+    ended = [table.item(r, 1).text() for r in range(table.rowCount())
+             if table.item(r, 0).text() == "Search ended"]
+    check("panel says why the search ended",
+          ended and ended[0] in ("converged", "iteration budget reached",
+                                 "time budget reached (not converged)"), ended)
     check("plan accepted", p.accept())
     cut = objects.stage_object(job, "CutPath")
     check("cut path drawn", cut is not None and len(cut.Shape.Edges) > 20 and cut.IdleTravel > 0)

@@ -19,7 +19,7 @@ from typing import Callable, List, Optional
 import numpy as np
 
 from .dp import optimal_entries
-from .ga import SearchResult
+from .ga import SearchResult, stop_reason
 from .instance import Instance
 from .localsearch import improve
 from .nn import nearest_neighbour
@@ -94,7 +94,7 @@ def run_aco(inst: Instance, *, time_limit: float, seed: int, n_ants: int = 8,
     nn_cost = inst.tour_cost(t, c)
     if m <= 3:
         c, cost = optimal_entries(inst, t)
-        return SearchResult(t, c, cost, 0, nn_cost, True)
+        return SearchResult(t, c, cost, 0, nn_cost, "converged")
     best_cost = improve(inst, t, c, near, neard, deadline=deadline)
     best_t, best_c = t[:], c[:]
     tau_max = 1.0 / (rho * max(best_cost, 1e-9))
@@ -134,4 +134,5 @@ def run_aco(inst: Instance, *, time_limit: float, seed: int, n_ants: int = 8,
         if progress is not None:
             progress(min(1.0, (time.perf_counter() - t_start) / max(time_limit, 1e-9)),
                      f"ant colony: iteration {it}, best {best_cost:.1f}")
-    return SearchResult(best_t, best_c, best_cost, it, nn_cost, stall >= stall_iterations)
+    return SearchResult(best_t, best_c, best_cost, it, nn_cost,
+                        stop_reason(stall >= stall_iterations, it >= max_iterations))

@@ -6,10 +6,12 @@ repaired to respect precedence, its entry points chosen exactly by the DP and
 then improved by local search (2-opt / Or-opt <-> DP); mutation is a local
 double-bridge kick followed by local search, kept when it shortens the tour
 (iterated local search).  The first individual is nearest-neighbour.  All
-randomness comes from one ``random.Random(seed)``: the same seed gives the
-same tour unless the time budget cuts the run short.  The run stops at the
-time limit, after ``max_generations``, or when ``stall_generations``
-generations in a row did not improve the best tour (converged).
+randomness comes from one ``random.Random(seed)`` and no decision depends on
+the clock, so the same seed gives the same tour whenever the run ends by
+convergence or by its generation budget.  The run stops when
+``stall_generations`` generations in a row did not improve the best tour
+(``"converged"``), after ``max_generations`` (``"iterations"``) or at the time
+limit (``"time"``: the only ending that depends on machine speed).
 """
 
 from __future__ import annotations
@@ -33,7 +35,16 @@ class SearchResult:
     cost: float
     iterations: int
     nn_cost: float
-    converged: bool
+    stopped_by: str     # "converged", "iterations" or "time"
+
+    @property
+    def converged(self) -> bool:
+        return self.stopped_by == "converged"
+
+
+def stop_reason(converged: bool, iterations_done: bool) -> str:
+    """Why a search loop ended (see :class:`SearchResult`)."""
+    return "converged" if converged else "iterations" if iterations_done else "time"
 
 
 def double_bridge(inst: Instance, t: List[int], rng: random.Random,
@@ -113,7 +124,9 @@ def order_crossover(p1: Sequence[int], p2: Sequence[int], rng: random.Random) ->
 def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
            max_generations: int = 100000, stall_generations: int = 40, kicks: int = 0,
            progress: Optional[Callable[[float, str], None]] = None) -> SearchResult:
-    """Genetic algorithm; returns the best tour found (anchor first)."""
+    """Genetic algorithm; returns the best tour found (anchor first).
+    ``time_limit`` in seconds caps the run; ``max_generations`` bounds it
+    independently of machine speed."""
     t_start = time.perf_counter()
     deadline = t_start + time_limit
     rng = random.Random(seed)
@@ -127,7 +140,7 @@ def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
     nn_cost = inst.tour_cost(t, c)
     if m <= 3:
         c, cost = optimal_entries(inst, t)
-        return SearchResult(t, c, cost, 0, nn_cost, True)
+        return SearchResult(t, c, cost, 0, nn_cost, "converged")
     cost = improve(inst, t, c, near, neard, deadline=deadline)
     pop: List[Tuple[float, List[int], List[int]]] = [(cost, t, c)]
     # diverse starts: randomised nearest-neighbour, each improved (a full local
@@ -177,4 +190,5 @@ def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
             progress(min(1.0, (time.perf_counter() - t_start) / max(time_limit, 1e-9)),
                      f"genetic algorithm: generation {gen}, best {best:.1f}")
     cost, t, c = pop[0]
-    return SearchResult(list(t), list(c), cost, gen, nn_cost, stall >= stall_generations)
+    return SearchResult(list(t), list(c), cost, gen, nn_cost,
+                        stop_reason(stall >= stall_generations, gen >= max_generations))

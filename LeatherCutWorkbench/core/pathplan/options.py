@@ -17,8 +17,12 @@ class PlanOptions:
     * ``method``: ``"ga"`` (genetic algorithm, default), ``"aco"`` (max-min
       ant system) or ``"nn"`` (nearest neighbour, the fast baseline).
     * ``time_limit``: search budget in seconds (the GA and ACO stop earlier
-      when converged).  ``seed``: random seed; the same seed gives the same
-      plan unless the time budget cut the search short.
+      when converged).  ``max_iterations``: when set, the GA stops after this
+      many generations and the ACO after this many iterations; the time limit
+      still caps the run.  ``seed``: random seed; the same seed gives the same
+      plan unless the time limit ended the search (``metrics.stopped_by ==
+      "time"``) -- an iteration budget reached within the time limit makes the
+      plan the same on any machine.
     * ``entry_spacing``: mm between entry candidates along edges (vertices are
       always candidates); ``max_candidates`` per contour.
     * ``home``: machine zero (mm); the head starts and ends there.
@@ -33,6 +37,7 @@ class PlanOptions:
 
     method: str = "ga"
     time_limit: float = 10.0
+    max_iterations: Optional[int] = None
     seed: int = 1
     entry_spacing: float = 20.0
     max_candidates: int = 64

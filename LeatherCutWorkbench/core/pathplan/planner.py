@@ -35,6 +35,8 @@ def _check_options(o: PlanOptions) -> None:
         raise InputError(f"lift angle must be within 0..180 degrees, got {o.lift_angle}")
     if o.max_candidates < 1:
         raise InputError("max_candidates must be at least 1")
+    if o.max_iterations is not None and o.max_iterations < 1:
+        raise InputError(f"plan iterations must be at least 1, got {o.max_iterations}")
 
 
 def build_instance(items: Sequence[PlanItem], preds: Sequence[Sequence[int]],
@@ -81,11 +83,12 @@ def plan(parts: Sequence[Part], open_chains: Sequence[OpenChain],
     if options.method == "nn":
         order, choice = nearest_neighbour(inst)
         cost = inst.tour_cost(order, choice)
-        res = SearchResult(order, choice, cost, 1, cost, True)
-    elif options.method == "aco":
-        res = run_aco(inst, time_limit=options.time_limit, seed=options.seed, progress=prog)
+        res = SearchResult(order, choice, cost, 1, cost, "converged")
     else:
-        res = run_ga(inst, time_limit=options.time_limit, seed=options.seed, progress=prog)
+        budget = {} if options.max_iterations is None else {
+            "max_iterations" if options.method == "aco" else "max_generations": options.max_iterations}
+        search = run_aco if options.method == "aco" else run_ga
+        res = search(inst, time_limit=options.time_limit, seed=options.seed, progress=prog, **budget)
     bad = violations(res.order, inst.preds)
     if bad:
         raise LeatherCutError(f"internal error: planned order breaks {bad} precedence rule(s)")
@@ -99,14 +102,14 @@ def plan(parts: Sequence[Part], open_chains: Sequence[OpenChain],
         cut_items.append(item.realise(item.cands[res.choice[it] - cand_base[it]], options.lift_angle))
     out = CutPlan(items=cut_items, home=home, method=options.method, findings=findings)
     out.metrics = _metrics(out, options, drawing, res.nn_cost, lb, lb_parts, res.iterations,
-                           t0, c0, inst.n - 1, converged=res.converged)
+                           t0, c0, inst.n - 1, stopped_by=res.stopped_by)
     report(progress, 1.0, "cut path planned")
     return out
 
 
 def _metrics(out: CutPlan, o: PlanOptions, drawing: float, nn: float, lb: float,
              lb_parts: dict, iterations: int, t0: float, c0: float, n_cands: int,
-             converged: bool = True) -> dict:
+             stopped_by: str = "converged") -> dict:
     m = plan_metrics(out, o.rapid_speed, o.cut_speed, o.accel, o.lift_time_s)
     idle = m["idle_mm"]
     return {
@@ -126,7 +129,8 @@ def _metrics(out: CutPlan, o: PlanOptions, drawing: float, nn: float, lb: float,
         "time_s": round(time.perf_counter() - t0, 3),
         "cpu_s": round(time.process_time() - c0, 3),
         "iterations": iterations,
-        "converged": converged,
+        "converged": stopped_by == "converged",
+        "stopped_by": stopped_by,
         "items": len(out.items),
         "entry_candidates": n_cands,
     }
