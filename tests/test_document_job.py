@@ -211,6 +211,35 @@ def test_earlier_change_marks_later_stages_out_of_date(doc, sample):
     assert set(objects.stage_states(job).values()) == {"out of date", "missing"}
 
 
+def test_move_to_origin_without_nesting(doc, sample):
+    """PlanMoveToOrigin moves the whole drawing (parts and open chains together)
+    so its lower-left corner lies PlanOriginOffset from machine zero; the cut
+    path is the same path, shifted, and changing the option marks it stale."""
+    job = _recognised(doc, sample)
+    job.PlanMethod, job.PlanTimeLimit = "nn", 0.5
+    parts0, chains0 = pipeline.parts_to_cut(job)
+    job.PlanMoveToOrigin, job.PlanOriginOffset = True, 5.0
+    parts1, chains1 = pipeline.parts_to_cut(job)
+    pts0 = [p for part in parts0 for p in part.outer.points(0.1)] + \
+        [p for ch in chains0 for sg in ch.segments for p in sg.points(0.1)]
+    pts1 = [p for part in parts1 for p in part.outer.points(0.1)] + \
+        [p for ch in chains1 for sg in ch.segments for p in sg.points(0.1)]
+    assert min(p[0] for p in pts0) != pytest.approx(5.0)
+    assert min(p[0] for p in pts1) == pytest.approx(5.0)
+    assert min(p[1] for p in pts1) == pytest.approx(5.0)
+    dx = pts1[0][0] - pts0[0][0]
+    dy = pts1[0][1] - pts0[0][1]
+    for a, b in zip(pts0, pts1):
+        assert b[0] - a[0] == pytest.approx(dx) and b[1] - a[1] == pytest.approx(dy)
+    pipeline.run_stage(job, "Plan")
+    plan = objects.load_data(objects.stage_object(job, "CutPath"))
+    xs = [p[0] for it in plan.items for sg in it.segments for p in sg.points(0.1)]
+    assert min(xs) >= 5.0 - 1e-6
+    assert objects.stage_states(job)["CutPath"] == "current"
+    job.PlanOriginOffset = 20.0
+    assert objects.stage_states(job)["CutPath"] == "out of date"
+
+
 def _full_job(doc, sample, out_dir):
     job = _recognised(doc, sample)
     pipeline.set_flag_decision(_flag(job, "under"), "Accept")

@@ -79,14 +79,23 @@ def arrange(recognition: Recognition, options: JobOptions,
         layout = nest(parts, options.nest, _scaled(progress, 0.4, 0.7))
         return layout, placed_parts(parts, layout), []
     chains = list(recognition.open_chains)
-    if options.move_to_origin is not None and (parts or chains):
-        pts = [p for part in parts for p in part.outer.points(0.1)]
-        pts += [p for ch in chains for s in ch.segments for p in s.points(0.1)]
-        xmin, ymin, _, _ = bbox(pts)
-        xf = Transform2D(dx=options.move_to_origin - xmin, dy=options.move_to_origin - ymin)
-        parts = [p.transformed(xf) for p in parts]
-        chains = [c.transformed(xf) for c in chains]
+    if options.move_to_origin is not None:
+        parts, chains = moved_to_origin(parts, chains, options.move_to_origin)
     return None, parts, chains
+
+
+def moved_to_origin(parts: List[Part], chains: List[OpenChain], offset: float
+                    ) -> "tuple[List[Part], List[OpenChain]]":
+    """Copies of ``parts`` and ``chains`` moved together so the lower-left corner
+    of their bounding box lies ``offset`` mm from machine zero in X and Y
+    (shapes and distances between them unchanged)."""
+    if not parts and not chains:
+        return parts, chains
+    pts = [p for part in parts for p in part.outer.points(0.1)]
+    pts += [p for ch in chains for s in ch.segments for p in s.points(0.1)]
+    xmin, ymin, _, _ = bbox(pts)
+    xf = Transform2D(dx=offset - xmin, dy=offset - ymin)
+    return [p.transformed(xf) for p in parts], [c.transformed(xf) for c in chains]
 
 
 def run_job(path: str, options: Optional[JobOptions] = None,

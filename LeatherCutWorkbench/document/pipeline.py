@@ -77,6 +77,13 @@ def add_nest_container_properties(job) -> None:
         job.NestSheetWidth, job.NestSheetHeight = 1000.0, 1000.0
     if job.NestStripWidth == 0:
         job.NestStripWidth = 1000.0
+    if "PlanMoveToOrigin" not in job.PropertiesList:
+        job.addProperty("App::PropertyBool", "PlanMoveToOrigin", "Plan",
+                        "without nesting: move the drawing so its lower-left corner lies "
+                        "PlanOriginOffset from machine zero (drawings often lie far from it)")
+        job.addProperty("App::PropertyFloat", "PlanOriginOffset", "Plan",
+                        "distance of the moved drawing's lower-left corner from machine zero, mm")
+        job.PlanOriginOffset = 10.0
     if "PlanFromMachine" not in job.PropertiesList:
         job.addProperty("App::PropertyBool", "PlanFromMachine", "Plan",
                         "take speeds, acceleration and the knife lift angle from the machine profile "
@@ -529,7 +536,11 @@ def parts_to_cut(job) -> Tuple[List[model.Part], List[model.OpenChain]]:
     if layout is not None and job.NestContainer != "none":
         from ..core.nesting import placed_parts
         return placed_parts(parts, layout), []
-    return parts, list(rec.open_chains)
+    chains = list(rec.open_chains)
+    if getattr(job, "PlanMoveToOrigin", False):
+        from ..core.job import moved_to_origin
+        return moved_to_origin(parts, chains, job.PlanOriginOffset)
+    return parts, chains
 
 
 def _plan_prepare(job):
