@@ -154,7 +154,7 @@ def test_ga_beats_nearest_neighbour_on_random_gtsp():
     t, c = nearest_neighbour(inst)
     nn = inst.tour_cost(t, c)
     # a fixed amount of work (not a time budget): the machine may be loaded
-    res = run_ga(inst, time_limit=600, seed=1, max_generations=5)
+    res = run_ga(inst, time_limit=600, seed=1, max_iterations=5)
     assert res.iterations == 5
     assert res.cost < 0.9 * nn
     assert res.nn_cost == pytest.approx(nn)

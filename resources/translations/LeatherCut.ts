@@ -273,7 +273,7 @@
 <context>
     <name>LeatherCut</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="173"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="169"/>
         <source>(post-process the job first)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -303,12 +303,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="415"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="419"/>
         <source>Container</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="71"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="82"/>
         <source>Contours cut</source>
         <translation type="unfinished"></translation>
     </message>
@@ -343,17 +343,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="421"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="425"/>
         <source>Defects</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="172"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="177"/>
         <source>Drawing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="205"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="201"/>
         <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -368,17 +368,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="272"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="277"/>
         <source>Excluded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="214"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="219"/>
         <source>Flags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="269"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="274"/>
         <source>Holes</source>
         <translation type="unfinished"></translation>
     </message>
@@ -418,17 +418,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="180"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="185"/>
         <source>Layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="411"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="415"/>
         <source>Layout</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="270"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="275"/>
         <source>Lead-ins</source>
         <translation type="unfinished"></translation>
     </message>
@@ -453,12 +453,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="183"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="188"/>
         <source>Marks</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="72"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="83"/>
         <source>Method</source>
         <translation type="unfinished"></translation>
     </message>
@@ -478,22 +478,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="271"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="276"/>
         <source>Open chains</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="268"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="273"/>
         <source>Outer contours</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="48"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="59"/>
         <source>Plan path</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="79"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="90"/>
         <source>Planned {0} contours.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -508,7 +508,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="201"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="197"/>
         <source>Post-process the job as G-code first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -518,7 +518,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="210"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="215"/>
         <source>Recognition</source>
         <translation type="unfinished"></translation>
     </message>
@@ -538,17 +538,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="288"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="49"/>
+        <source>Search ended</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="284"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="261"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="257"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="248"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="244"/>
         <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -558,18 +563,33 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="31"/>
+        <source>converged</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="113"/>
         <source>cutting {0} of {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="274"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="58"/>
+        <source>density {0:.1f} %</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="289"/>
         <source>finish or cancel the open task panel first</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="114"/>
         <source>idle move (knife up)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="32"/>
+        <source>iteration budget reached</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -583,18 +603,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="179"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="175"/>
         <source>start of the job</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="58"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="60"/>
         <source>strip length {0:.1f} mm</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="115"/>
         <source>t = {0:.1f} s of {1:.1f} s – {2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="33"/>
+        <source>time budget reached (not converged)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -608,12 +633,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="56"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="55"/>
         <source>utilisation {0:.1f} %</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="59"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="61"/>
         <source>{0} containers</source>
         <translation type="unfinished"></translation>
     </message>
@@ -628,7 +653,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="53"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="52"/>
         <source>{0} placed, {1} unplaced</source>
         <translation type="unfinished"></translation>
     </message>
@@ -643,7 +668,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="243"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="239"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -706,12 +731,12 @@
 <context>
     <name>LeatherCut_AutoNest</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="66"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="68"/>
         <source>Auto-nest</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="67"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="69"/>
         <source>Nest the recognised parts on sheets, a strip or a leather hide with defects</source>
         <translation type="unfinished"></translation>
     </message>
@@ -758,12 +783,12 @@
 <context>
     <name>LeatherCut_MachineProfiles</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="106"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="96"/>
         <source>Browse machine profiles (table, speeds, knife, I/O), choose the job's machine or copy a profile to edit it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="105"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="95"/>
         <source>Machine profiles…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -784,12 +809,12 @@
 <context>
     <name>LeatherCut_PlanPath</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="86"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="97"/>
         <source>Order the cuts and choose entry points (holes first, lead-ins respected); shows cutting moves, idle moves dashed, order numbers and entry points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="85"/>
+        <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="96"/>
         <source>Plan path</source>
         <translation type="unfinished"></translation>
     </message>
@@ -836,12 +861,12 @@
 <context>
     <name>LeatherCut_SendToCutter</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="274"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="270"/>
         <source>Send to cutter…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="275"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="271"/>
         <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
         <translation type="unfinished"></translation>
     </message>

@@ -82,7 +82,7 @@ def _construct(inst: Instance, tau: np.ndarray, near, neard, rng: random.Random,
 
 def run_aco(inst: Instance, *, time_limit: float, seed: int, n_ants: int = 8,
             alpha: float = 1.0, beta: float = 3.0, rho: float = 0.1,
-            max_iterations: int = 100000, stall_iterations: int = 25,
+            max_iterations: Optional[int] = None, stall_iterations: int = 25,
             progress: Optional[Callable[[float, str], None]] = None) -> SearchResult:
     """MMAS; returns the best tour found (anchor first)."""
     t_start = time.perf_counter()
@@ -102,7 +102,8 @@ def run_aco(inst: Instance, *, time_limit: float, seed: int, n_ants: int = 8,
     tau = np.full((m, m), tau_max, dtype=np.float32 if m > 2000 else np.float64)
     it = 0
     stall = 0
-    while it < max_iterations and stall < stall_iterations and time.perf_counter() < deadline:
+    budget = max_iterations if max_iterations is not None else float("inf")
+    while it < budget and stall < stall_iterations and time.perf_counter() < deadline:
         it += 1
         ib_cost, ib_t, ib_c = np.inf, None, None
         for _ in range(n_ants):
@@ -135,4 +136,4 @@ def run_aco(inst: Instance, *, time_limit: float, seed: int, n_ants: int = 8,
             progress(min(1.0, (time.perf_counter() - t_start) / max(time_limit, 1e-9)),
                      f"ant colony: iteration {it}, best {best_cost:.1f}")
     return SearchResult(best_t, best_c, best_cost, it, nn_cost,
-                        stop_reason(stall >= stall_iterations, it >= max_iterations))
+                        stop_reason(stall >= stall_iterations, it >= budget))

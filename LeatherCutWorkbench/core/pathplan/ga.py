@@ -10,7 +10,7 @@ randomness comes from one ``random.Random(seed)`` and no decision depends on
 the clock, so the same seed gives the same tour whenever the run ends by
 convergence or by its generation budget.  The run stops when
 ``stall_generations`` generations in a row did not improve the best tour
-(``"converged"``), after ``max_generations`` (``"iterations"``) or at the time
+(``"converged"``), after ``max_iterations`` generations (``"iterations"``) or at the time
 limit (``"time"``: the only ending that depends on machine speed).
 """
 
@@ -122,11 +122,11 @@ def order_crossover(p1: Sequence[int], p2: Sequence[int], rng: random.Random) ->
 
 
 def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
-           max_generations: int = 100000, stall_generations: int = 40, kicks: int = 0,
+           max_iterations: Optional[int] = None, stall_generations: int = 40, kicks: int = 0,
            progress: Optional[Callable[[float, str], None]] = None) -> SearchResult:
     """Genetic algorithm; returns the best tour found (anchor first).
-    ``time_limit`` in seconds caps the run; ``max_generations`` bounds it
-    independently of machine speed."""
+    ``time_limit`` in seconds caps the run; ``max_iterations`` (generations,
+    None = no limit) bounds it independently of machine speed."""
     t_start = time.perf_counter()
     deadline = t_start + time_limit
     rng = random.Random(seed)
@@ -162,7 +162,8 @@ def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
     best = pop[0][0]
     gen = 0
     stall = 0
-    while gen < max_generations and stall < stall_generations and time.perf_counter() < deadline:
+    budget = max_iterations if max_iterations is not None else float("inf")
+    while gen < budget and stall < stall_generations and time.perf_counter() < deadline:
         gen += 1
         i1 = min(rng.randrange(len(pop)), rng.randrange(len(pop)))
         i2 = min(rng.randrange(len(pop)), rng.randrange(len(pop)))
@@ -191,4 +192,4 @@ def run_ga(inst: Instance, *, time_limit: float, seed: int, pop_size: int = 0,
                      f"genetic algorithm: generation {gen}, best {best:.1f}")
     cost, t, c = pop[0]
     return SearchResult(list(t), list(c), cost, gen, nn_cost,
-                        stop_reason(stall >= stall_generations, gen >= max_generations))
+                        stop_reason(stall >= stall_generations, gen >= budget))

@@ -85,10 +85,9 @@ def plan(parts: Sequence[Part], open_chains: Sequence[OpenChain],
         cost = inst.tour_cost(order, choice)
         res = SearchResult(order, choice, cost, 1, cost, "converged")
     else:
-        budget = {} if options.max_iterations is None else {
-            "max_iterations" if options.method == "aco" else "max_generations": options.max_iterations}
         search = run_aco if options.method == "aco" else run_ga
-        res = search(inst, time_limit=options.time_limit, seed=options.seed, progress=prog, **budget)
+        res = search(inst, time_limit=options.time_limit, seed=options.seed,
+                     max_iterations=options.max_iterations, progress=prog)
     bad = violations(res.order, inst.preds)
     if bad:
         raise LeatherCutError(f"internal error: planned order breaks {bad} precedence rule(s)")
