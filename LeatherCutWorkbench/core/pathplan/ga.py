@@ -37,10 +37,6 @@ class SearchResult:
     nn_cost: float
     stopped_by: str     # "converged", "iterations" or "time"
 
-    @property
-    def converged(self) -> bool:
-        return self.stopped_by == "converged"
-
 
 def stop_reason(converged: bool, iterations_done: bool) -> str:
     """Why a search loop ended (see :class:`SearchResult`)."""
