@@ -92,7 +92,7 @@ def arrange(graph: Graph, comp: List[int], cluster: int, chord_tol: float,
         if fb.XMin <= x0 + 1e-9 or fb.YMin <= y0 + 1e-9 or fb.XMax >= x1 - 1e-9 \
                 or fb.YMax >= y1 - 1e-9:
             continue                           # the outside (touches the frame)
-        wire = face.OuterWire
+        wire = outer_wire(face)
         ordered = wire.OrderedEdges
         hashes = [e.hashCode() for e in ordered]
         used.update(hashes)
@@ -108,6 +108,29 @@ def arrange(graph: Graph, comp: List[int], cluster: int, chord_tol: float,
     leftovers = [edge_segment(e, chord_tol) for e in result.Edges
                  if e.hashCode() not in used and not _on_frame(e, x0, y0, x1, y1)]
     return cells, leftovers
+
+
+def outer_wire(face: "Part.Face") -> "Part.Wire":
+    """The wire bounding ``face`` from outside.
+
+    ``Face.OuterWire`` is not reliable here: on a cell whose hole touches its
+    outer boundary (a part drawn against the sheet border, DeepNest example
+    after closing a gap) OCC returned the hole's wire, so the part came out
+    twice and the border was lost.  The outer boundary is the wire with the
+    largest bounding box, and of wires with the same box the one enclosing the
+    most area (mm²)."""
+    wires = face.Wires
+    if len(wires) == 1:
+        return wires[0]
+
+    def size(w) -> "tuple[float, float]":
+        b = w.BoundBox
+        try:
+            enclosed = abs(Part.Face(w).Area)
+        except Exception:  # noqa: BLE001 - an open or degenerate wire encloses nothing
+            enclosed = 0.0
+        return (round(b.XLength * b.YLength, 6), enclosed)
+    return max(wires, key=size)
 
 
 def _on_frame(e: "Part.Edge", x0: float, y0: float, x1: float, y1: float) -> bool:
