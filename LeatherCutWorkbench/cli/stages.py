@@ -38,6 +38,15 @@ def add_stage_options(parser: argparse.ArgumentParser, before: str) -> None:
             "--move-to-origin", dest="job_move_to_origin", type=non_negative, default=None,
             metavar="MM", help="without nesting: move the drawing so its lower-left corner lies "
                                "MM mm from machine zero (default: cut where it lies)")
+        gate = parser.add_argument_group("layout gate")
+        gate.add_argument(
+            "--layout-in", dest="job_layout_in", metavar="FILE.json", default=None,
+            help="cut this layout (layout JSON as written by --layout-out, e.g. edited by hand) "
+                 "instead of nesting; checked against --spacing/--margin")
+        gate.add_argument(
+            "--allow-invalid-layout", dest="job_allow_invalid_layout", action="store_true",
+            help="experts: cut a layout with overlaps, spacing or margin violations, parts "
+                 "outside the container or on a defect anyway (logged on stderr and in the report)")
 
 
 def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> JobOptions:
@@ -50,7 +59,17 @@ def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> J
         else:
             setattr(opts, field, mod.options_from_args(args))
     opts.move_to_origin = getattr(args, "job_move_to_origin", None)
+    if getattr(args, "job_layout_in", None):
+        from ..core.layout_json import read_layout_json
+        opts.layout = read_layout_json(args.job_layout_in)
+    opts.allow_invalid_layout = bool(getattr(args, "job_allow_invalid_layout", False))
+    opts.log = _warn
     return opts
+
+
+def _warn(message: str) -> None:
+    """Overrides of the layout gate, on stderr as they happen."""
+    sys.stderr.write(f"warning: {message}\n")
 
 
 def _number(text: str, ok: Callable[[float], bool], rule: str) -> float:

@@ -19,6 +19,7 @@ import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
 from ..core.errors import InputError, LeatherCutError
+from ..document import pipeline
 from . import base, paths
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
@@ -199,6 +200,11 @@ class SendPanel:
         url = self.port.text().strip()
         if not url:
             self.show(translate("LeatherCut", "Enter the port (e.g. /dev/ttyUSB0 or socket://host:23)."), True)
+            return None
+        try:  # the layout gate: parts may have been moved since the file was written
+            pipeline.check_gate(self.job)
+        except LeatherCutError as exc:
+            self.show(str(exc), True)
             return None
         if url != self.job.PostPort:
             with base.transaction(self.job.Document, "LeatherCut: port"):

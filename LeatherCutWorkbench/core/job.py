@@ -8,8 +8,8 @@ Stages are imported lazily: importing this module costs nothing.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any, List, Optional
+from dataclasses import dataclass, field, replace
+from typing import Any, Callable, Dict, List, Optional
 
 from .geometry import Transform2D, bbox
 from .model import CutPlan, Drawing, Finding, Layout, OpenChain, Part, Recognition
@@ -21,13 +21,24 @@ class JobOptions:
     """Options of every stage.  ``nest`` is None when the drawing is cut where
     it lies (no container given); ``move_to_origin`` (mm) then optionally moves
     the whole drawing so its lower-left corner sits that far from machine zero
-    (drawings often lie at negative or far-away coordinates)."""
+    (drawings often lie at negative or far-away coordinates).
+
+    ``decisions`` (flag id -> Include / Exclude / Accept / Reject / Undecided,
+    see :mod:`core.decisions`) are applied after recognition.  ``layout`` is a
+    layout to cut as it stands (hand-placed in the workbench, or a layout JSON)
+    instead of nesting again; every layout passes the gate
+    (:mod:`core.layout_gate`) against ``nest``'s spacing and margin unless
+    ``allow_invalid_layout``; ``log(message)`` is told of every override."""
 
     import_: Any = None
     recognise: Any = None
     nest: Any = None
     plan: Any = None
     move_to_origin: Optional[float] = None
+    decisions: Optional[Dict[str, str]] = None
+    layout: Optional[Layout] = None
+    allow_invalid_layout: bool = False
+    log: Optional[Callable[[str], None]] = None
 
 
 @dataclass
@@ -41,6 +52,8 @@ class JobResult:
     parts_to_cut: List[Part]
     plan: CutPlan
     findings: List[Finding] = field(default_factory=list)
+    #: the recognition before the person's decisions (None when there were none)
+    proposal: Optional[Recognition] = None
 
 
 def _scaled(progress: Optional[ProgressFn], lo: float, hi: float) -> Optional[ProgressFn]:
@@ -52,36 +65,81 @@ def _scaled(progress: Optional[ProgressFn], lo: float, hi: float) -> Optional[Pr
 
 def load_and_recognise(path: str, options: JobOptions,
                        progress: Optional[ProgressFn] = None) -> "tuple[Drawing, Recognition]":
-    """Import ``path`` and recognise its parts."""
+    """Import ``path`` and recognise its parts (the person's decisions applied)."""
+    drawing, _proposal, recognition = _load(path, options, progress)
+    return drawing, recognition
+
+
+def _load(path: str, options: JobOptions, progress: Optional[ProgressFn]
+          ) -> "tuple[Drawing, Optional[Recognition], Recognition]":
+    """(drawing, proposal run or None without decisions, recognition to cut)."""
     from .dxfimport import ImportOptions, read_drawing
     from .recognition import RecogniseOptions, recognise
 
     report(progress, 0.0, f"reading {path}")
     drawing = read_drawing(path, options.import_ or ImportOptions(), _scaled(progress, 0.0, 0.2))
     report(progress, 0.2, "recognising contours")
-    recognition = recognise(drawing, options.recognise or RecogniseOptions(),
-                            _scaled(progress, 0.2, 0.4))
-    return drawing, recognition
+    rec_opts = options.recognise or RecogniseOptions()
+    recognition = recognise(drawing, rec_opts, _scaled(progress, 0.2, 0.4))
+    if not options.decisions:
+        return drawing, None, recognition
+    from .decisions import apply_decisions, rerun_with_fixes
+    decided = apply_decisions(recognition, options.decisions, rerun_with_fixes(drawing, rec_opts))
+    return drawing, recognition, decided
 
 
 def arrange(recognition: Recognition, options: JobOptions,
             progress: Optional[ProgressFn] = None
             ) -> "tuple[Optional[Layout], List[Part], List[OpenChain]]":
-    """Decide where the parts are cut: nested into a container when one is
-    given, else where they lie (optionally moved to the origin).  Returns the
-    layout (or None), the parts to cut and the open chains to cut.  Open chains
-    are only cut with an un-nested drawing: nesting moves parts, and stray
-    lines have no part to travel with."""
+    """Decide where the parts are cut: on the given layout, nested into a
+    container when one is given, else where they lie (optionally moved to the
+    origin).  Returns the layout (or None), the parts to cut and the open chains
+    to cut.  Open chains are only cut with an un-nested drawing: nesting moves
+    parts, and stray lines have no part to travel with.  A layout must pass the
+    gate (raises InputError naming the parts, unless overridden)."""
     parts = recognition.active_parts()
-    if options.nest is not None:
+    if options.layout is not None or options.nest is not None:
         from .nesting import nest, placed_parts
 
-        layout = nest(parts, options.nest, _scaled(progress, 0.4, 0.7))
+        layout = options.layout if options.layout is not None else \
+            nest(parts, options.nest, _scaled(progress, 0.4, 0.7))
+        layout = replace(layout, findings=list(layout.findings) + gated(parts, layout, options))
         return layout, placed_parts(parts, layout), []
     chains = list(recognition.open_chains)
     if options.move_to_origin is not None:
         parts, chains = moved_to_origin(parts, chains, options.move_to_origin)
     return None, parts, chains
+
+
+def gated(parts: List[Part], layout: Layout, options: JobOptions) -> List[Finding]:
+    """Pass ``layout`` through the gate with the job's spacing and margin; returns
+    the override warnings (each also given to ``options.log``)."""
+    from .layout_gate import gate_layout
+
+    nest = options.nest
+    found = gate_layout(parts, layout, spacing=getattr(nest, "spacing", 0.0),
+                        margin=getattr(nest, "margin", 0.0),
+                        tol=max(getattr(nest, "tolerance", 1e-3), 1e-3),
+                        chord_tol=getattr(nest, "chord_tol", 0.05),
+                        allow_invalid=options.allow_invalid_layout)
+    for f in found:
+        if options.log is not None:
+            options.log(f.message)
+    return found
+
+
+def plan_arranged(recognition: Recognition, options: JobOptions,
+                  progress: Optional[ProgressFn] = None
+                  ) -> "tuple[Optional[Layout], List[Part], CutPlan]":
+    """Arrange (:func:`arrange`) and plan the recognition to cut: the one
+    composition behind ``leathercut run`` / ``plan`` / ``post`` / ``send``, the
+    workbench's *Run job* and its *Plan path*.  ``progress`` runs 0.4 -> 1.0."""
+    from .pathplan import PlanOptions, plan
+
+    layout, parts, chains = arrange(recognition, options, progress)
+    report(progress, 0.7, "planning the cut path")
+    cut_plan = plan(parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    return layout, parts, cut_plan
 
 
 def moved_to_origin(parts: List[Part], chains: List[OpenChain], offset: float
@@ -104,16 +162,12 @@ def run_job(path: str, options: Optional[JobOptions] = None,
 
     Raises :class:`~LeatherCutWorkbench.core.errors.InputError` for unusable
     input; every stage's findings are collected in ``JobResult.findings``."""
-    from .pathplan import PlanOptions, plan
-
     options = options or JobOptions()
-    drawing, recognition = load_and_recognise(path, options, progress)
-    layout, parts, chains = arrange(recognition, options, progress)
-    report(progress, 0.7, "planning the cut path")
-    cut_plan = plan(parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    drawing, proposal, recognition = _load(path, options, progress)
+    layout, parts, cut_plan = plan_arranged(recognition, options, progress)
     findings = list(drawing.findings) + list(recognition.findings)
     if layout is not None:
         findings += layout.findings
     findings += cut_plan.findings
     report(progress, 1.0, "job planned")
-    return JobResult(path, drawing, recognition, layout, parts, cut_plan, findings)
+    return JobResult(path, drawing, recognition, layout, parts, cut_plan, findings, proposal)

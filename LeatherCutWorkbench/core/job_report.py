@@ -41,6 +41,8 @@ def job_report(result: JobResult) -> Dict[str, Any]:
                    "entry": [round(it.entry[0], 4), round(it.entry[1], 4)]}
                   for n, it in enumerate(items, start=1)],
         "nesting": None,
+        # problems of the layout cut despite the gate (--allow-invalid-layout); [] = none
+        "layout_override": [f.message for f in result.findings if f.code == "layout-override"],
         "warnings": [f.to_json() for f in result.findings if f.level != "info"],
         "findings": [f.to_json() for f in result.findings],
     }

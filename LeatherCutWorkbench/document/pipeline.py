@@ -25,7 +25,8 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 import FreeCAD
 
 from ..core import geometry, model
-from ..core.errors import InputError, LeatherCutError
+from ..core.decisions import apply_decisions, rerun_with_fixes
+from ..core.errors import InputError
 from ..core.progress import ProgressFn
 from . import objects, options, shapes
 from .objects import translate
@@ -84,6 +85,15 @@ def add_nest_container_properties(job) -> None:
         job.addProperty("App::PropertyFloat", "PlanOriginOffset", "Plan",
                         "distance of the moved drawing's lower-left corner from machine zero, mm")
         job.PlanOriginOffset = 10.0
+    if "AllowInvalidLayout" not in job.PropertiesList:
+        job.addProperty("App::PropertyBool", "AllowInvalidLayout", "Plan",
+                        "experts: plan, post and send a layout with overlaps, spacing or margin "
+                        "violations, parts outside the container or on a defect anyway "
+                        "(every problem is logged in the report view)")
+    if "RunNestAgain" not in job.PropertiesList:
+        job.addProperty("App::PropertyBool", "RunNestAgain", "Nest",
+                        "Run job nests the parts again, replacing the current (maybe hand-placed) "
+                        "layout; off: Run job cuts the current layout as it stands")
     if "PlanFromMachine" not in job.PropertiesList:
         job.addProperty("App::PropertyBool", "PlanFromMachine", "Plan",
                         "take speeds, acceleration and the knife lift angle from the machine profile "
@@ -317,9 +327,7 @@ def effective_recognition(job) -> model.Recognition:
         drawing = objects.load_data(drawing_obj)
         if drawing is None:
             raise InputError("import the drawing first (Import DXF)")
-        from ..core.recognition import recognise
-        out = recognise(drawing, replace(opts, close_gaps=False, accept_fixes=accept,
-                                         reject_fixes=reject))
+        out = rerun_with_fixes(drawing, opts)(accept, reject)
         _RERUN_CACHE[slot] = (key, out)
         return out
 
@@ -328,59 +336,6 @@ def effective_recognition(job) -> model.Recognition:
 
 #: (document, job) -> (key, recognition with the accepted fixes applied)
 _RERUN_CACHE: Dict[Tuple[str, str], Tuple[Any, model.Recognition]] = {}
-
-
-def apply_decisions(rec: model.Recognition, decisions: Dict[str, str],
-                    recognise_again: Optional[Callable[[frozenset, frozenset],
-                                                       model.Recognition]] = None
-                    ) -> model.Recognition:
-    """Apply decisions (flag id -> Include / Exclude / Accept / Reject / Undecided).
-
-    Over-recognised: Include clears ``excluded`` on the flagged parts, Exclude
-    sets it.  Under-recognised: the fixes to apply (Accept, or Undecided on a
-    flag the stored run already applied, e.g. with ``close_gaps``) and to reject
-    are passed to ``recognise_again(accept_ids, reject_ids)``, which returns the
-    core's recognition with exactly those fixes applied; it is called only when
-    the geometry must change.  Returns a new recognition."""
-    from copy import deepcopy
-    under = [f for f in rec.flags if f.kind == "under"]
-    accept = frozenset(f.id for f in under if decisions.get(f.id) == "Accept"
-                       or (decisions.get(f.id, "Undecided") == "Undecided" and f.accepted is True))
-    reject = frozenset(f.id for f in under if decisions.get(f.id) == "Reject")
-    if any((f.id in accept) != (f.accepted is True) for f in under):
-        if recognise_again is None:
-            raise LeatherCutError("accepting or rejecting a fix needs the drawing: "
-                                  "recognise again")
-        out = deepcopy(recognise_again(accept, reject))
-        _check_same_flags(rec, out, accept | reject)
-    else:
-        out = deepcopy(rec)
-        for f in out.flags:
-            if f.kind == "under" and f.id in reject:
-                f.accepted = False
-    for flag in out.flags:
-        d = decisions.get(flag.id, "Undecided")
-        if flag.kind == "over" and d in ("Include", "Exclude"):
-            flag.accepted = d == "Exclude"
-            ids = set(flag.ids)
-            for p in out.parts:
-                if p.id in ids or p.outer.id in ids:
-                    p.excluded = d == "Exclude"
-    return out
-
-
-def _check_same_flags(old: model.Recognition, new: model.Recognition, decided) -> None:
-    """The decided flags must be the same flags in the new run (else the stored
-    recognition no longer matches the drawing or the options)."""
-    got = {f.id: f for f in new.flags}
-    for f in old.flags:
-        if f.id not in decided:
-            continue
-        g = got.get(f.id)
-        if g is None or (g.kind, g.action) != (f.kind, f.action) or \
-                abs((g.gap or 0.0) - (f.gap or 0.0)) > 1e-9:
-            raise InputError(f"flag {f.id} is not the same after recognising again: the "
-                             "recognition is out of date, run Recognise again")
 
 
 def set_flag_decision(flag_obj, decision: str) -> None:
@@ -494,16 +449,16 @@ def current_layout(job) -> Optional[model.Layout]:
 
 
 def layout_problems(job) -> List[str]:
-    """Problems of the current layout (overlaps, outside the container, defects)."""
-    from ..core.nesting.checker import check_layout
+    """Problems of the current layout that the gate refuses (overlaps, spacing
+    and margin, outside the container, defects), naming the parts."""
+    from ..core.layout_gate import layout_findings
     layout = current_layout(job)
     if layout is None:
         return []
     rec = effective_recognition(job)
     opts = stage_options(job, "Nest")
-    return check_layout(rec.active_parts(), layout, spacing=opts.spacing, margin=opts.margin,
-                        tol=max(opts.tolerance, 1e-3), chord_tol=opts.chord_tol,
-                        rotations_override=None, mirror_override=True)
+    return layout_findings(rec.active_parts(), layout, spacing=opts.spacing, margin=opts.margin,
+                           tol=max(opts.tolerance, 1e-3), chord_tol=opts.chord_tol)
 
 
 def update_collisions(job) -> List[str]:
@@ -511,7 +466,7 @@ def update_collisions(job) -> List[str]:
 
     Rotations are not restricted here: a person may turn a part to any angle
     by hand (the part's own rotation limits apply to automatic nesting)."""
-    problems = [p for p in layout_problems(job) if "not allowed" not in p]
+    problems = layout_problems(job)
     placed = placed_objects(job)
     labels = {f"{o.PartId}#{o.Copy}": o for o in placed}
     bad = set()
@@ -528,25 +483,57 @@ def update_collisions(job) -> List[str]:
 
 # -- plan -----------------------------------------------------------------------
 
+def job_options(job, nest_again: bool = False):
+    """The core's JobOptions for ``job`` as the document stands: every stage's
+    options, the flag decisions, move-to-origin, the current (maybe hand-placed)
+    layout unless ``nest_again``, the gate override; overrides are logged in the
+    report view.  The one reading of the document behind *Plan path* and *Run
+    job* (and what ``leathercut run`` gets from the equivalent options)."""
+    from ..core.job import JobOptions
+    nested = job.NestContainer != "none"
+    layout = current_layout(job) if nested and not nest_again else None
+    return JobOptions(
+        import_=stage_options(job, "Import"), recognise=stage_options(job, "Recognise"),
+        nest=stage_options(job, "Nest") if nested else None,
+        plan=with_machine(stage_options(job, "Plan"), job),
+        move_to_origin=job.PlanOriginOffset if getattr(job, "PlanMoveToOrigin", False) else None,
+        decisions={o.FlagId: o.Decision for o in flag_objects(job)},
+        layout=layout, allow_invalid_layout=bool(getattr(job, "AllowInvalidLayout", False)),
+        log=_log_override)
+
+
+def _log_override(message: str) -> None:
+    FreeCAD.Console.PrintWarning(f"LeatherCut: {message}\n")
+
+
+def _kept_layout_options(job):
+    """JobOptions of a stage that cuts the current layout and never nests."""
+    opts = job_options(job)
+    if opts.nest is not None and opts.layout is None:
+        raise InputError("nest the parts first (Auto-nest), or choose no container to cut "
+                         "the drawing where it lies")
+    return opts
+
+
 def parts_to_cut(job) -> Tuple[List[model.Part], List[model.OpenChain]]:
-    """Parts (placed in container coordinates when nested) and open chains to cut."""
-    rec = effective_recognition(job)
-    parts = rec.active_parts()
-    layout = current_layout(job)
-    if layout is not None and job.NestContainer != "none":
-        from ..core.nesting import placed_parts
-        return placed_parts(parts, layout), []
-    chains = list(rec.open_chains)
-    if getattr(job, "PlanMoveToOrigin", False):
-        from ..core.job import moved_to_origin
-        return moved_to_origin(parts, chains, job.PlanOriginOffset)
+    """Parts (placed in container coordinates when nested) and open chains to cut;
+    a layout must pass the gate (InputError naming the parts)."""
+    from ..core.job import arrange
+    _layout, parts, chains = arrange(effective_recognition(job), _kept_layout_options(job))
     return parts, chains
 
 
+def check_gate(job) -> None:
+    """Refuse (InputError) a current layout the gate does not pass; *Post-process*
+    and *Send to cutter* call it, since parts may have moved since *Plan path*."""
+    from ..core.job import gated
+    opts = job_options(job)
+    if opts.layout is not None:
+        gated(effective_recognition(job).active_parts(), opts.layout, opts)
+
+
 def _plan_prepare(job):
-    parts, chains = parts_to_cut(job)
-    opts = stage_options(job, "Plan")
-    return parts, chains, with_machine(opts, job)
+    return effective_recognition(job), _kept_layout_options(job)
 
 
 def with_machine(opts, job):
@@ -563,9 +550,9 @@ def with_machine(opts, job):
 
 
 def _plan_compute(inputs, progress):
-    from ..core.pathplan import plan
-    parts, chains, opts = inputs
-    return plan(parts, chains, opts, progress)
+    from ..core.job import plan_arranged
+    rec, opts = inputs
+    return plan_arranged(rec, opts, progress)[2]
 
 
 def _plan_apply(job, cut_plan: model.CutPlan):
@@ -608,6 +595,7 @@ def default_output(job) -> str:
 def _post_prepare(job):
     from ..post.profiles import load_profile
     plan = stored_plan(job)
+    check_gate(job)
     path = job.PostOutputFile or default_output(job)
     return plan, load_profile(job.PostMachine), job.PostFormat, path
 
@@ -629,14 +617,18 @@ def _post_apply(job, result):
     return path
 
 
-# -- run job (the lead's core.job.run_job, then every stage's apply) --------------
+# -- run job (core.job.run_job with the document's decisions, then every stage's apply) --
 
 def _run_prepare(job):
-    from ..core.job import JobOptions
-    path, import_opts = _import_prepare(job)
-    nest_opts = stage_options(job, "Nest") if job.NestContainer != "none" else None
-    return path, JobOptions(import_=import_opts, recognise=stage_options(job, "Recognise"),
-                            nest=nest_opts, plan=with_machine(stage_options(job, "Plan"), job))
+    path, _import_opts = _import_prepare(job)
+    nest_again = bool(getattr(job, "RunNestAgain", False))
+    opts = job_options(job, nest_again=nest_again)
+    lay = objects.stage_object(job, "Layout")
+    if opts.layout is not None and lay.OutOfDate:
+        raise InputError("the layout is out of date (an earlier stage changed since it was "
+                         "nested): nest again (Auto-nest), or set RunNestAgain to let Run job "
+                         "replace it")
+    return path, opts
 
 
 def _run_compute(inputs, progress):
@@ -648,7 +640,7 @@ def _run_compute(inputs, progress):
 def _run_apply(job, result):
     res, opts = result
     _import_apply(job, res.drawing)
-    _recognise_apply(job, res.recognition)
+    _recognise_apply(job, res.proposal or res.recognition)
     if res.layout is not None:
         _nest_apply(job, (res.recognition.active_parts(), res.layout, opts.nest))
     else:
