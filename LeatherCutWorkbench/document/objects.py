@@ -25,12 +25,17 @@ FreeCAD 0.20, ``dumps``/``loads`` for 0.21.2 and 1.x).
 
 from __future__ import annotations
 
-from typing import Any, Dict, Iterable, List, Optional
+from typing import Any, Dict, Optional
 
 import FreeCAD
 
-from . import codec
+from . import codec, tree
+from .job_properties import add_nest_container_properties
 from .options import STAGE_OPTIONS, add_properties, preferences, stage_of_property
+
+#: navigation helpers, defined in .tree so the view providers need not import this module
+role, is_job, job_of, jobs = tree.role, tree.is_job, tree.job_of, tree.jobs
+stage_object, walk, load_data = tree.stage_object, tree.walk, tree.load_data
 
 #: Pipeline order of the stage objects; a change in one marks the later ones out of date.
 STAGE_ORDER = ("Import", "Recognise", "Nest", "Plan", "Post")
@@ -128,8 +133,7 @@ class JobProxy(Proxy):
     def onDocumentRestored(self, obj):
         # Options added by newer stage packages appear with their defaults.
         add_job_properties(obj)
-        from . import pipeline
-        pipeline.add_nest_container_properties(obj)
+        add_nest_container_properties(obj)
 
 
 def add_job_properties(obj) -> None:
@@ -284,49 +288,8 @@ class PlacedPartProxy(Proxy):
 
 
 # ---------------------------------------------------------------------------
-# Navigation helpers
+# Stage marking and stored values (navigation helpers live in .tree)
 # ---------------------------------------------------------------------------
-
-def role(obj) -> str:
-    return getattr(obj, "Role", "") if obj is not None else ""
-
-
-def is_job(obj) -> bool:
-    return role(obj) == "Job"
-
-
-def job_of(obj):
-    """The Job that (directly or indirectly) contains ``obj`` (or ``obj`` itself)."""
-    seen = set()
-    while obj is not None and obj.Name not in seen:
-        if is_job(obj):
-            return obj
-        seen.add(obj.Name)
-        parents = [p for p in obj.InList if obj in (getattr(p, "Group", None) or [])]
-        obj = parents[0] if parents else None
-    return None
-
-
-def jobs(doc) -> List[Any]:
-    return [o for o in doc.Objects if is_job(o)] if doc is not None else []
-
-
-def stage_object(job, role_name: str):
-    """The job's child with the given role (``Drawing``, ``Recognition``, ...)."""
-    if job is None:
-        return None
-    for o in job.Group:
-        if role(o) == role_name:
-            return o
-    return None
-
-
-def walk(obj) -> Iterable[Any]:
-    """The object and everything in its groups, depth first."""
-    yield obj
-    for child in getattr(obj, "Group", []) or []:
-        yield from walk(child)
-
 
 def mark_out_of_date(job, stage: str, include_self: bool) -> None:
     """Mark the result of ``stage`` (if ``include_self``) and every later stage
@@ -340,13 +303,6 @@ def mark_out_of_date(job, stage: str, include_self: bool) -> None:
         obj = stage_object(job, r) if r else None
         if obj is not None and "OutOfDate" in obj.PropertiesList and not obj.OutOfDate:
             obj.OutOfDate = True
-
-
-def load_data(obj) -> Any:
-    """The stage value stored in ``obj.Data`` (None when empty)."""
-    if obj is None or "Data" not in obj.PropertiesList:
-        return None
-    return codec.loads(obj.Data)
 
 
 def store_data(obj, value: Any) -> None:

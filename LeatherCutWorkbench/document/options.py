@@ -75,8 +75,8 @@ def _kind(value: Any) -> str:
 
 
 #: fields the job keeps elsewhere, not as plain option properties: the nest container in
-#: properties of its own (see pipeline.add_nest_container_properties), accepted / rejected
-#: gap fixes as the decisions on the flag objects (see pipeline.apply_decisions)
+#: properties of its own (see job_properties.add_nest_container_properties), accepted / rejected
+#: gap fixes as the decisions on the flag objects (see core.decisions.apply_decisions)
 SPECIAL_FIELDS = {"Nest": {"container"}, "Recognise": {"accept_fixes", "reject_fixes"}}
 
 

@@ -13,7 +13,7 @@ from typing import List, Optional, Sequence, Tuple
 
 import FreeCADGui as Gui
 
-from . import objects, style
+from . import style, tree
 
 ICON_DIR = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                         "resources", "icons")
@@ -69,7 +69,7 @@ class JobViewProvider(ViewProvider):
 
 def _open_stage_panel(vobj, command: str) -> bool:
     """Double-click on a stage object: select its job and open the stage's panel."""
-    job = objects.job_of(vobj.Object)
+    job = tree.job_of(vobj.Object)
     if job is None or Gui.Control.activeDialog():
         return False
     Gui.Selection.clearSelection()
@@ -84,14 +84,14 @@ class StageViewProvider(ViewProvider):
     COMMANDS = {"Recognition": "LeatherCut_Recognise", "Layout": "LeatherCut_AutoNest"}
 
     def doubleClicked(self, vobj):
-        command = self.COMMANDS.get(objects.role(vobj.Object))
+        command = self.COMMANDS.get(tree.role(vobj.Object))
         return _open_stage_panel(vobj, command) if command else False
 
     def getIcon(self):
         obj = getattr(self, "Object", None)
         if obj is not None and getattr(obj, "OutOfDate", False):
             return icon("OutOfDate")
-        return icon(self.ICONS.get(objects.role(obj), "LeatherCut"))
+        return icon(self.ICONS.get(tree.role(obj), "LeatherCut"))
 
 
 class ShapeViewProvider(ViewProvider):
@@ -203,7 +203,7 @@ class CutPathViewProvider(ViewProvider):
         vobj = obj.ViewObject
         if vobj is None or not vobj.Visibility:
             return
-        plan = objects.load_data(obj)
+        plan = tree.load_data(obj)
         if plan is None:
             return
         size = _label_size(plan)
