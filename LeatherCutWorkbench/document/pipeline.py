@@ -578,6 +578,10 @@ def _run_prepare(job):
     path, _import_opts = _import_prepare(job)
     nest_again = bool(getattr(job, "RunNestAgain", False))
     opts = job_options(job, nest_again=nest_again)
+    rec = objects.stage_object(job, "Recognition")
+    if rec is not None and rec.OutOfDate and any(d != "Undecided" for d in opts.decisions.values()):
+        raise InputError("the recognition is out of date and has flag decisions (flag ids may "
+                         "name other contours now): recognise again first, decisions are kept")
     lay = objects.stage_object(job, "Layout")
     if opts.layout is not None and lay.OutOfDate:
         raise InputError("the layout is out of date (an earlier stage changed since it was "
