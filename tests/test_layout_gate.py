@@ -48,7 +48,7 @@ def test_spacing_margin_outside_and_defect():
     assert any("margin 5 mm" in m and "P2#0" in m
                for m in layout_findings(parts(), layout(300, 10), margin=5.0))
     out = layout_findings(parts(), layout(350, 10))
-    assert len(out) == 1 and out[0].startswith("P2#0: 2 500 mm² outside container s")
+    assert len(out) == 1 and out[0] == "P2#0: 5 000 mm² outside container s"
     hole = [(260, 150), (280, 150), (280, 170), (260, 170)]
     (d,) = layout_findings(parts(), layout(250, 100, [hole]))
     assert d.startswith("P2#0: covers defect 0 of s")
