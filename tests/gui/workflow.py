@@ -175,6 +175,24 @@ def steps():
     check("post accepted", p.accept())
     check("machine file written", os.path.isfile(out_nc) and open(out_nc).read().count("G1") > 20)
 
+    # the layout gate: a part pushed onto another is refused by Plan, Post and Send
+    a0, a1 = pipeline.placed_objects(job)[:2]
+    keep = a0.Placement
+    shift = a1.Shape.BoundBox.Center - a0.Shape.BoundBox.Center
+    shift.z = 0
+    a0.Placement = FreeCAD.Placement(keep.Base + shift, keep.Rotation)
+    for name, run in (("LeatherCut_PlanPath", lambda q: q.preview()),
+                      ("LeatherCut_PostProcess", lambda q: q.accept()),
+                      ("LeatherCut_SendToCutter", lambda q: q.start() is not None)):
+        p = command_panel(name)
+        if name == "LeatherCut_SendToCutter":
+            p.port.setText("emulator:grblhal")
+        check(f"{name} refuses the unsafe layout", not run(p) and "not safe to cut" in p.status.text()
+              and f"{a0.PartId}#{a0.Copy}" in p.status.text(), p.status.text())
+        p.reject()
+        pump()
+    a0.Placement = keep
+
     # Send to cutter: stream into the fake controller (off the GUI thread)
     from LeatherCutWorkbench.post.emulator import FakeController
     from LeatherCutWorkbench.post.profiles import load_profile
