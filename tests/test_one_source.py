@@ -31,6 +31,7 @@ from gui.sample import write_sample  # noqa: E402
 
 LEATHERCUT = os.path.join(os.path.dirname(sys.executable), "leathercut")
 VISICUT = os.path.join(SAMPLES_DIR, "visicut_6_HG2_Korpusinnen_2.dxf")
+DEEPNEST = os.path.join(SAMPLES_DIR, "deepnest_ReadMeExampleSmall.dxf")
 #: an AAMA file lying at negative X (like GMX1016S18_AAMA.DXF of the issue, a quarter of its size)
 AAMA = os.path.join(SAMPLES_DIR, "WM_SLIM_TANK.DXF")
 #: plan options both ways: nearest neighbour is deterministic and quick
@@ -107,6 +108,21 @@ def test_move_to_origin_is_the_job_everywhere(doc, tmp_path):
     staged, whole = _stages_then_run_job(job, str(tmp_path))
     assert whole == staged
     assert _cli_run(AAMA, str(tmp_path), "--move-to-origin", "10") == staged
+
+
+def test_over_and_under_decisions_are_the_job_everywhere(doc, tmp_path):
+    """DeepNest example: F1 (gap) accepted, F2 (the plate border, over-recognised)
+    included.  The CLI equivalent of Include on an over flag is the part id
+    (``--recognise-include P1``: the part is cut as recognised), not the contour
+    id (which recomputes containment)."""
+    job = _job(doc, DEEPNEST, str(tmp_path))
+    job.PlanMoveToOrigin, job.PlanOriginOffset = True, 10.0
+    _decide(job, {"F1": "Accept", "F2": "Include"})
+    staged, whole = _stages_then_run_job(job, str(tmp_path))
+    assert len(pipeline.stored_plan(job).items) == 14 + 18       # 14 parts, 18 holes
+    assert whole == staged
+    assert _cli_run(DEEPNEST, str(tmp_path), "--accept-fix", "F1", "--recognise-include", "P1",
+                    "--move-to-origin", "10") == staged
 
 
 def _nested_job(doc, tmp_path, spacing=2.0):
