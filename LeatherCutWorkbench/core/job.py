@@ -1,9 +1,12 @@
-"""The whole job as one call: import -> recognise -> (nest) -> plan.
+"""The whole job as one call: import -> recognise -> decisions -> (nest | kept
+layout, gated) -> plan.
 
 The CLI's ``run`` verb, the later verbs that re-run earlier stages, the
 workbench's *Run job* command and the ``freecadcmd`` end-to-end test all use
-:func:`run_job`, so a headless run and a toolbar run give the same result.
-Stages are imported lazily: importing this module costs nothing.
+:func:`run_job`; the workbench's *Plan path* uses :func:`plan_arranged` on the
+stored recognition with the same options, so a headless run, a toolbar run and
+the stages one by one give the same result.  Stages are imported lazily:
+importing this module costs nothing.
 """
 
 from __future__ import annotations
