@@ -90,6 +90,9 @@ class MachineProfile:
     hpgl_velocity: float = 20.0           # cm/s
     hpgl_force: float = 80.0              # g
     overcut: float = 0.0                  # mm cut past the start of a closed contour
+    # drag knife (post/drag_knife.py): the blade tip trails the swivel axis
+    blade_offset: float = 0.0             # mm, tip behind the axis (0 = no compensation)
+    swivel_angle: float = 10.0            # degrees; sharper corners get a swivel arc
     source: str = ""                      # file the profile came from
 
     # ---------------------------------------------------------------- helpers
@@ -282,6 +285,14 @@ def _validate(p: MachineProfile, source: str) -> None:
     for key in ("settle_dwell", "pierce_delay", "cooling_delay", "overcut"):
         if getattr(p, key) < 0:
             fail(f"{key} must not be negative")
+    if p.blade_offset < 0:
+        fail("blade_offset must not be negative (mm)")
+    if p.blade_offset > 0 and p.tool == "tangential_knife":
+        fail("blade_offset is for a drag knife: this profile's tool is tangential_knife "
+             "(its blade is turned by the rotary axis, so there is no trailing offset); "
+             "set blade_offset to 0 or tool to drag_knife")
+    if not 0.0 <= p.swivel_angle <= 180.0:
+        fail("swivel_angle must lie in [0, 180] degrees")
     if p.sync_every_segment and not p.is_gcode:
         fail(f"sync_every_segment needs a G-code dialect (G4 P0); {p.dialect} has no "
              "synchronising command")
