@@ -148,6 +148,10 @@ def add_job_properties(obj) -> None:
     if "PostOutputFile" not in obj.PropertiesList:
         obj.addProperty("App::PropertyFile", "PostOutputFile", "Post",
                         "where Post-process writes the machine file")
+    if "PostToolMap" not in obj.PropertiesList:
+        obj.addProperty("App::PropertyString", "PostToolMap", "Post",
+                        "which tool does which role, on top of the profile's tool_map "
+                        "(e.g. stitch=pen,drill=punch4; docs/MACHINES.md)")
     if "PostPort" not in obj.PropertiesList:
         obj.addProperty("App::PropertyString", "PostPort", "Post",
                         "serial port or pyserial URL for Send to cutter (e.g. /dev/ttyUSB0, socket://host:23)")

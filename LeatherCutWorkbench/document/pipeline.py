@@ -607,15 +607,19 @@ def default_output(job) -> str:
 
 def _post_prepare(job):
     from ..post.profiles import load_profile
+    from ..post.tools import parse_tool_map, tool_map
     plan = stored_plan(job)
     path = job.PostOutputFile or default_output(job)
-    return plan, load_profile(job.PostMachine), job.PostFormat, path
+    profile = load_profile(job.PostMachine)
+    overrides = parse_tool_map(getattr(job, "PostToolMap", "") or "", "PostToolMap")
+    tool_map(profile, overrides)          # a bad map is refused before anything is written
+    return plan, parts_to_cut(job)[0], profile, job.PostFormat, overrides, path
 
 
 def _post_compute(inputs, progress):
-    plan, profile, fmt, path = inputs
-    writer = importlib.import_module(f"LeatherCutWorkbench.post.{'dxf_out' if fmt == 'dxf' else fmt}")
-    text = writer.export(plan, profile)
+    from ..post import tool_export
+    plan, parts, profile, fmt, overrides, path = inputs
+    text = tool_export.render(plan, parts, profile, fmt, overrides=overrides)
     return text, path
 
 
