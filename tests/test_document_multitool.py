@@ -47,6 +47,13 @@ def test_multitool_leather_job_from_the_workbench(doc, tmp_path):
     assert len(strikes) == len(drills) == 2
     assert all(min(abs(s[0] - d[0]) + abs(s[1] - d[1]) for s in strikes) < 1e-3 for d in drills)
     assert [ln for ln in text.splitlines() if ln.endswith("M6")] == ["T3 M6", "T2 M6", "T1 M6"]
+    # Plan path shows each further tool as its own shape (colour in the GUI)
+    from LeatherCutWorkbench.document import objects
+    group = objects.stage_object(job, "ToolPaths")
+    shown = {o.Label: o.Shape for o in group.Group}
+    assert set(shown) == {"Tool pen", "Tool punch4"}
+    assert len(shown["Tool punch4"].Vertexes) == 2
+    assert len(shown["Tool pen"].Edges) >= sum(len(p.lines) for p in parts)
     # a role mapped to a tool the machine lacks: refused, nothing new written
     os.remove(job.PostOutputFile)
     job.PostToolMap = "drill=laser"

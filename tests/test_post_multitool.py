@@ -217,3 +217,12 @@ def test_profiles_without_tools_write_what_they_wrote_before(aama_job):
     plain = replace(multi, tool_map={})
     assert tool_export.render(aama_job.plan, aama_job.parts_to_cut, plain, "gcode") == \
         gcode.export(aama_job.plan, plain)
+
+
+def test_a_punch_first_job_still_starts_with_the_vacuum(aama_job):
+    prof = replace(load_profile(MACHINE), tool_map={"drill": "punch4"})
+    text = tool_export.render(aama_job.plan, aama_job.parts_to_cut, prof, "gcode")
+    lines = [ln for ln in text.splitlines() if not ln.startswith("(")]
+    assert lines.index("T2 M6") < lines.index("M64 P0") < lines.index("M64 P4")
+    assert lines.index("M65 P0") > max(i for i, ln in enumerate(lines) if ln == "T1 M6")
+    assert lines.count("M64 P0") == 1 and lines.count("M65 P0") == 1

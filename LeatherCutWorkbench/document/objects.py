@@ -11,6 +11,7 @@ A job in a FreeCAD document is one group::
       Layout (group)                           nesting result (hidden Data)
         Container <id> / Placed <part>#<copy>  (Part::FeaturePython, movable by hand)
       Cut path (Part::FeaturePython)           the planned job (hidden Data), metrics
+      Tool paths (group)                       multi-tool jobs: Tool <name> per further tool
 
 Stage values are stored with :mod:`.codec` in hidden string properties, so they
 are saved with the document and undone like any other property.  Every object
@@ -211,6 +212,13 @@ class CutPathProxy(StageProxy):
         obj.setEditorMode("Items", 1)
         obj.addProperty("App::PropertyString", "Method", "Metrics", "planning method used")
         obj.setEditorMode("Method", 1)
+
+
+class ToolPathsProxy(StageProxy):
+    """What the further tools of a multi-tool job do (one shape per tool, in the
+    tool's colour), drawn next to the cut path; replaced with it."""
+
+    ROLE = "ToolPaths"
 
 
 class ShapeProxy(Proxy):

@@ -84,6 +84,12 @@ def _strikes(p: ToolPass, prof: MachineProfile, home: Point) -> Toolpath:
     return tp
 
 
+def _preamble(profile: MachineProfile, home: Point) -> List[Move]:
+    """The moves a job starts with (vacuum / plate on, settle dwell)."""
+    moves = build_toolpath(CutPlan([], home=home), profile).moves
+    return moves[:next(i for i, m in enumerate(moves) if m.kind == "rapid")]
+
+
 def _renumber(tp: Toolpath, offset: int) -> Toolpath:
     def sid(s: str) -> str:
         if not s:
@@ -106,6 +112,8 @@ def _pass_toolpaths(job: ToolJob, profile: MachineProfile) -> List[tuple]:
         if p.points:
             tp = _strikes(p, prof, job.home)
             n = len(p.points)
+            if k == 0:                    # the job's vacuum / plate on comes first
+                tp.moves[:0] = _preamble(profile, job.home)
         else:
             tp = build_toolpath(CutPlan(_shift(p.items, p.tool.offset), home=job.home), prof)
             n = len(p.items)
@@ -117,12 +125,14 @@ def _pass_toolpaths(job: ToolJob, profile: MachineProfile) -> List[tuple]:
     return out
 
 
-def gcode_text(job: ToolJob, profile: MachineProfile, options=None) -> str:
-    """One G-code program: every pass, ``select`` lines before each tool's pass."""
+def gcode_program(job: ToolJob, profile: MachineProfile, options=None):
+    """One G-code program (a :class:`~.gcode.Program`: lines with their segment
+    ids, for files and the live link): every pass, ``select`` lines before
+    each tool's pass."""
     from . import gcode, safety
 
     opts = replace(options or gcode.ExportOptions(), line_numbers=False)
-    lines: List[str] = []
+    out = gcode.Program()
     parts = _pass_toolpaths(job, profile)
     for k, (p, prof, tp) in enumerate(parts):
         prof_k = replace(prof, header=list(profile.header) if k == 0 else [],
@@ -130,26 +140,40 @@ def gcode_text(job: ToolJob, profile: MachineProfile, options=None) -> str:
                          vacuum_on=[] if k else prof.vacuum_on, press_on=[] if k else prof.press_on,
                          line_numbers=False)
         prog = gcode.build_program(CutPlan(p.items), prof_k, opts, toolpath=tp)
-        body = prog.lines
-        if opts.comments and body and body[0].startswith("(LeatherCut job"):
-            body = body[1:]
-            lines.append(f"(LeatherCut job for {profile.name}: tool {p.tool.name} = {p.tool.kind}, "
-                         f"{len(p.points) or len(p.items)} items)" if len(parts) > 1 else "")
+        lines, segs = prog.lines, prog.segs
+        if opts.comments and lines and lines[0].startswith("(LeatherCut job"):
+            lines, segs = lines[1:], segs[1:]
+            out.add(f"(LeatherCut job for {profile.name}: tool {p.tool.name} = {p.tool.kind}, "
+                    f"{len(p.points) or len(p.items)} items)")
         head = len(prof_k.header)
-        select = [t.replace("{number}", str(p.tool.number)) for t in p.tool.select]
-        body = body[:head] + gcode.expand(select, profile) + body[head:]
-        lines.extend(body)
-    lines = [ln for ln in lines if ln]
+        select = gcode.expand([t.replace("{number}", str(p.tool.number)) for t in p.tool.select],
+                              profile)
+        for line, seg in list(zip(lines[:head], segs[:head])) + [(t, "") for t in select] \
+                + list(zip(lines[head:], segs[head:])):
+            out.add(line, seg)
+        out.segment_ids.extend(tp.segment_ids)
     numbered = profile.line_numbers if (options is None or options.line_numbers is None) \
         else options.line_numbers
     if numbered:
         n = 0
-        for k, line in enumerate(lines):
+        for k, line in enumerate(out.lines):
             if not line.startswith("("):
                 n += 1
-                lines[k] = f"N{n} {line}"
-    safety.check_lines(lines, profile)
-    return "\n".join(lines) + "\n"
+                out.lines[k] = f"N{n} {line}"
+    safety.check_lines(out.lines, profile)
+    return out
+
+
+def program(plan: CutPlan, parts: Sequence[Part], profile: MachineProfile,
+            overrides: Optional[Dict[str, str]] = None):
+    """The G-code Program of the whole job (what ``send`` streams): the
+    single-tool program when no role is mapped."""
+    from . import gcode
+
+    job = job_for(plan, parts, profile, overrides)
+    if not is_multi(job, plan):
+        return gcode.build_program(plan, profile)
+    return gcode_program(job, profile)
 
 
 def hpgl_text(job: ToolJob, profile: MachineProfile, options=None) -> str:
@@ -206,7 +230,9 @@ def render(plan: CutPlan, parts: Sequence[Part], profile: MachineProfile, fmt: s
     if not is_multi(job, plan):
         return gcode.export(plan, profile, options) if fmt == "gcode" else \
             hpgl.export(plan, profile, options)
-    return gcode_text(job, profile, options) if fmt == "gcode" else hpgl_text(job, profile, options)
+    if fmt == "gcode":
+        return gcode_program(job, profile, options).text()
+    return hpgl_text(job, profile, options)
 
 
 def tool_report(job: ToolJob, profile: MachineProfile) -> List[Dict[str, Any]]:
