@@ -199,7 +199,9 @@ def hpgl_text(job: ToolJob, profile: MachineProfile, options=None) -> str:
         body = text.splitlines()
         out += (body[:4] if not out else body[3:4]) + body[4:-1]
     out.append("SP0;")
-    return "\n".join(out) + "\n"
+    text = "\n".join(out) + "\n"
+    hpgl.check_instructions(text)
+    return text
 
 
 def dxf_layers(job: ToolJob) -> Dict[str, tuple]:

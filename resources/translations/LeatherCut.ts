@@ -328,7 +328,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="457"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="469"/>
         <source>Cut path</source>
         <translation type="unfinished"></translation>
     </message>
@@ -438,7 +438,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="81"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="103"/>
         <source>LeatherCut: the cut path is out of date; plan the path again first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -558,7 +558,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="63"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="611"/>
+        <source>Tool paths</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="615"/>
+        <source>Tool {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="57"/>
+        <source>Tools: {0}. Roles: {1}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="85"/>
         <source>Wrote {0} ({1} lines).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -593,7 +608,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="422"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="434"/>
         <source>over-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -623,7 +638,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="423"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="435"/>
         <source>under-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -822,12 +837,12 @@
 <context>
     <name>LeatherCut_PostProcess</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="69"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="91"/>
         <source>Post-process…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="70"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="92"/>
         <source>Write the planned job as a machine file (G-code, HPGL or DXF) for a machine profile; moves outside the table or unsafe feeds are refused</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1084,6 +1099,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Tool map</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Write now</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1097,6 +1116,10 @@
     </message>
     <message>
         <source>hpgl</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>role=tool, e.g. stitch=pen,drill=punch4 (on top of the profile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>

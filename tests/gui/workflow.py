@@ -167,9 +167,21 @@ def steps():
 
     p = command_panel("LeatherCut_MachineProfiles")
     check("profiles listed", p.list.count() >= 5, p.list.count())
+    details = p.details.toPlainText()
+    check("profile shows the drag-knife and tool fields",
+          all(f'"{k}"' in details for k in ("blade_offset", "swivel_angle", "tools", "tool_map",
+                                            "tool_select", "notch_length")), details[-300:])
     p.reject()
 
     p = command_panel("LeatherCut_PostProcess")
+    tools_label = p.form.findChild(QtGui.QLabel, "toolMapLabel")
+    check("post panel shows the tool map", "knife" in tools_label.text(), tools_label.text())
+    p.set_widget("PostToolMap", "stitch=pen")
+    p.show_tools()
+    check("a tool the machine lacks is named", "'pen'" in tools_label.text()
+          and "PostToolMap" in tools_label.text(), tools_label.text())
+    p.set_widget("PostToolMap", "")
+    p.show_tools()
     out_nc = os.path.join(OUT, "job.nc")
     p.set_widget("PostOutputFile", out_nc)
     check("post accepted", p.accept())
