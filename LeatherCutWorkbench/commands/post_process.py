@@ -53,7 +53,8 @@ class PostPanel(panel.StagePanel):
             from ..post.profiles import load_profile
             from ..post.tools import declared_tools, describe, parse_tool_map, tool_map
             prof = load_profile(self.job.PostMachine)
-            mapping = tool_map(prof, parse_tool_map(self.job.PostToolMap or "", "PostToolMap"))
+            mapping = tool_map(prof, parse_tool_map(getattr(self.job, "PostToolMap", "") or "", "PostToolMap"),
+                               "PostToolMap")
             label.setText(translate("LeatherCut", "Tools: {0}. Roles: {1}.").format(
                 ", ".join(f"{t.name} ({t.kind})" for t in declared_tools(prof).values()),
                 describe(mapping)))

@@ -602,7 +602,8 @@ def _show_tools(job, cut_plan: model.CutPlan) -> None:
     try:
         prof = load_profile(job.PostMachine)
         tools = tool_export.job_for(cut_plan, parts_to_cut(job)[0], prof,
-                                    parse_tool_map(job.PostToolMap or "", "PostToolMap"))
+                                    parse_tool_map(getattr(job, "PostToolMap", "") or "", "PostToolMap"),
+                                    "PostToolMap")
     except InputError:
         return
     if len(tools.passes) < 2:
@@ -645,14 +646,15 @@ def _post_prepare(job):
     path = job.PostOutputFile or default_output(job)
     profile = load_profile(job.PostMachine)
     overrides = parse_tool_map(getattr(job, "PostToolMap", "") or "", "PostToolMap")
-    tool_map(profile, overrides)          # a bad map is refused before anything is written
+    tool_map(profile, overrides, "PostToolMap")   # a bad map is refused before anything is written
     return plan, parts_to_cut(job)[0], profile, job.PostFormat, overrides, path
 
 
 def _post_compute(inputs, progress):
     from ..post import tool_export
     plan, parts, profile, fmt, overrides, path = inputs
-    text = tool_export.render(plan, parts, profile, fmt, overrides=overrides)
+    text = tool_export.render(plan, parts, profile, fmt, overrides=overrides,
+                              overrides_from="PostToolMap")
     return text, path
 
 

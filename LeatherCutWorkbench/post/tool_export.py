@@ -32,12 +32,13 @@ KIND_COLOURS = {"pen": "#6a1b9a", "marker": "#6a1b9a", "scribe": "#6a1b9a", "cre
 
 
 def job_for(plan: CutPlan, parts: Sequence[Part], profile: MachineProfile,
-            overrides: Optional[Dict[str, str]] = None) -> ToolJob:
+            overrides: Optional[Dict[str, str]] = None,
+            overrides_from: str = "--tool-map") -> ToolJob:
     """The tool job of ``plan`` and ``parts`` for ``profile`` (role map from the
-    profile, ``overrides`` on top).  Raises InputError for a role mapped to a
-    tool the machine lacks."""
-    return build_tool_job(plan, parts, tool_map(profile, overrides), main_tool(profile),
-                          profile.notch_length)
+    profile, ``overrides`` on top, named ``overrides_from`` in messages).
+    Raises InputError for a role mapped to a tool the machine lacks."""
+    return build_tool_job(plan, parts, tool_map(profile, overrides, overrides_from),
+                          main_tool(profile), profile.notch_length)
 
 
 def is_multi(job: ToolJob, plan: CutPlan) -> bool:
@@ -218,13 +219,13 @@ def dxf_layers(job: ToolJob) -> Dict[str, tuple]:
 
 def render(plan: CutPlan, parts: Sequence[Part], profile: MachineProfile, fmt: str,
            options=None, overrides: Optional[Dict[str, str]] = None,
-           job: Optional[ToolJob] = None) -> str:
+           job: Optional[ToolJob] = None, overrides_from: str = "--tool-map") -> str:
     """The machine file of a whole job in ``fmt`` (gcode | hpgl | dxf): the
     single-tool writers when no role is mapped, else every tool's pass
     (``job``: the tool job when already built with :func:`job_for`)."""
     from . import dxf_out, gcode, hpgl
 
-    job = job or job_for(plan, parts, profile, overrides)
+    job = job or job_for(plan, parts, profile, overrides, overrides_from)
     marks = [m for part in parts for m in part.marks]
     if fmt == "dxf":
         return dxf_out.export(job.main.plan(plan.home), profile,

@@ -139,9 +139,11 @@ def check_role(role: str, source: str) -> None:
                          source=source)
 
 
-def tool_map(profile, overrides: Optional[Dict[str, str]] = None) -> Dict[str, Tool]:
-    """Role -> tool for ``profile``: its ``tool_map`` with ``overrides`` (e.g.
-    from ``--tool-map``) on top; a value ``none`` unmaps a role.  Raises
+def tool_map(profile, overrides: Optional[Dict[str, str]] = None,
+             overrides_from: str = "--tool-map") -> Dict[str, Tool]:
+    """Role -> tool for ``profile``: its ``tool_map`` with ``overrides`` (from
+    ``overrides_from``: ``--tool-map``, the job's ``PostToolMap``) on top; a
+    value ``none`` unmaps a role.  Raises
     InputError naming the profile field or option when a role or a tool is
     unknown, or a tool cannot do the role (a punch cannot draw a line)."""
     tools = declared_tools(profile)
@@ -149,7 +151,7 @@ def tool_map(profile, overrides: Optional[Dict[str, str]] = None) -> Dict[str, T
     merged: Dict[str, Tuple[str, str]] = {r: (t, f"{src}: field tool_map")
                                           for r, t in profile.tool_map.items()}
     for r, t in (overrides or {}).items():
-        merged[r] = (t, "--tool-map")
+        merged[r] = (t, overrides_from)
     out: Dict[str, Tool] = {}
     for role, (name, where) in merged.items():
         check_role(role, where)
