@@ -95,8 +95,9 @@ def run(args: argparse.Namespace) -> Report:
                          source=args.file)
     tool_map(profile, tool_overrides(args))        # a bad --tool-map fails before planning
     result = plan_drawing(args, profile)
+    tools = tool_export.job_for(result.plan, result.parts_to_cut, profile, tool_overrides(args))
     text = tool_export.render(result.plan, result.parts_to_cut, profile, fmt,
-                              options_from_args(args), tool_overrides(args))
+                              options_from_args(args), job=tools)
     out = args.post_output
     tmp = out + ".part"
     try:
@@ -112,7 +113,8 @@ def run(args: argparse.Namespace) -> Report:
         "format": fmt, "output": out, "bytes": len(text.encode("ascii")), "lines": n_lines,
         "items": len(plan.items), "segments": sum(len(i.segments) for i in plan.items),
         "cut_length_mm": round(sum(i.length for i in plan.items), 3),
-        "findings": [f.to_json() for f in result.findings],
+        "tools": tool_export.tool_report(tools, profile),
+        "findings": [f.to_json() for f in result.findings + tools.findings],
     }
     text_out = (f"{args.file}: {data['items']} items, {data['segments']} segments, "
                 f"cut {data['cut_length_mm']:.1f} mm -> {out} ({fmt}, {profile.name}, "

@@ -588,25 +588,34 @@ def _plan_apply(job, cut_plan: model.CutPlan):
     return obj
 
 
+def tool_job(job, cut_plan: model.CutPlan):
+    """The multi-tool job (post/tool_jobs.py) of ``cut_plan`` for the job's
+    machine and ``PostToolMap``; None when the machine has no further tools
+    in use or the profile / map would be refused by Post-process."""
+    from ..post import tool_export
+    from ..post.profiles import load_profile
+    from ..post.tools import parse_tool_map
+    try:
+        prof = load_profile(job.PostMachine)
+        tools = tool_export.job_for(cut_plan, parts_to_cut(job)[0], prof,
+                                    parse_tool_map(getattr(job, "PostToolMap", "") or "",
+                                                   "PostToolMap"), "PostToolMap")
+    except InputError:
+        return None
+    return tools if tool_export.is_multi(tools, cut_plan) else None
+
+
 def _show_tools(job, cut_plan: model.CutPlan) -> None:
     """The passes of the further tools of the job's machine (pen lines, punch
     points, ...), one shape per tool in its colour (post/tool_export.py), in a
     *Tool paths* group replaced with the cut path.  Nothing when the machine
     has no tool map; a map the Post stage would refuse shows no tools."""
     from ..post import tool_export
-    from ..post.profiles import load_profile
-    from ..post.tools import parse_tool_map
     old = objects.stage_object(job, objects.ToolPathsProxy.ROLE)
     if old is not None:
         objects.remove_tree(old)
-    try:
-        prof = load_profile(job.PostMachine)
-        tools = tool_export.job_for(cut_plan, parts_to_cut(job)[0], prof,
-                                    parse_tool_map(getattr(job, "PostToolMap", "") or "", "PostToolMap"),
-                                    "PostToolMap")
-    except InputError:
-        return
-    if len(tools.passes) < 2:
+    tools = tool_job(job, cut_plan)
+    if tools is None or len(tools.passes) < 2:
         return
     grp = objects.make_stage_group(job, objects.ToolPathsProxy, "ToolPaths",
                                    translate("LeatherCut", "Tool paths"))

@@ -438,7 +438,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="103"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="104"/>
         <source>LeatherCut: the cut path is out of date; plan the path again first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -558,22 +558,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="611"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="621"/>
         <source>Tool paths</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="615"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="625"/>
         <source>Tool {0}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="57"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="58"/>
         <source>Tools: {0}. Roles: {1}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="85"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="86"/>
         <source>Wrote {0} ({1} lines).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -583,7 +583,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="113"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="133"/>
         <source>cutting {0} of {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -598,7 +598,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="114"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="135"/>
         <source>idle move (knife up)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -628,7 +628,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="115"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="136"/>
         <source>t = {0:.1f} s of {1:.1f} s – {2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -680,6 +680,11 @@
     <message>
         <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="67"/>
         <source>{0} uses {1}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="131"/>
+        <source>{0}: {1} of {2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -837,12 +842,12 @@
 <context>
     <name>LeatherCut_PostProcess</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="91"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="92"/>
         <source>Post-process…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="92"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="93"/>
         <source>Write the planned job as a machine file (G-code, HPGL or DXF) for a machine profile; moves outside the table or unsafe feeds are refused</source>
         <translation type="unfinished"></translation>
     </message>
@@ -889,12 +894,12 @@
 <context>
     <name>LeatherCut_Simulate</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="158"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="179"/>
         <source>Animate the knife along the planned cut path at the machine's speeds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="157"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="178"/>
         <source>Simulate</source>
         <translation type="unfinished"></translation>
     </message>
