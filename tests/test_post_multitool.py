@@ -226,3 +226,17 @@ def test_a_punch_first_job_still_starts_with_the_vacuum(aama_job):
     assert lines.index("T2 M6") < lines.index("M64 P0") < lines.index("M64 P4")
     assert lines.index("M65 P0") > max(i for i, ln in enumerate(lines) if ln == "T1 M6")
     assert lines.count("M64 P0") == 1 and lines.count("M65 P0") == 1
+
+
+def test_multitool_profile_round_trips_through_the_user_folder(tmp_path, monkeypatch):
+    """Machine profiles -> Copy to user folder keeps tools, tool_map and the
+    drag-knife fields (what the profile editor shows and saves)."""
+    from LeatherCutWorkbench.post.profiles import save_user_profile
+    monkeypatch.setenv("LEATHERCUT_MACHINES", str(tmp_path))
+    prof = load_profile(MACHINE)
+    path = save_user_profile(replace(prof, name="mine"))
+    back = load_profile("mine")
+    assert back.source == path
+    for key in ("tools", "tool_map", "tool_select", "notch_length", "blade_offset", "swivel_angle"):
+        assert getattr(back, key) == getattr(prof, key)
+    assert declared_tools(back)["punch4"].diameter == 4.0
