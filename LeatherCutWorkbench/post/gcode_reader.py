@@ -312,9 +312,12 @@ class Interpreter:
             return cur + v
         target = abs(v) % self.turn
         here = cur % self.turn
+        eps = 1e-9 * self.turn          # float noise of ``cur % turn``: the same angle
         if v < 0 or (v == 0 and math.copysign(1.0, v) < 0):
-            return cur - ((here - target) % self.turn)
-        return cur + ((target - here) % self.turn)
+            d = (here - target) % self.turn
+            return cur - (0.0 if d > self.turn - eps or d < eps else d)
+        d = (target - here) % self.turn
+        return cur + (0.0 if d > self.turn - eps or d < eps else d)
 
 
 def read_program(text: str, axes: str = "XYZC", wrapped: str = "", turn: float = 360.0
