@@ -240,3 +240,22 @@ def test_multitool_profile_round_trips_through_the_user_folder(tmp_path, monkeyp
     for key in ("tools", "tool_map", "tool_select", "notch_length", "blade_offset", "swivel_angle"):
         assert getattr(back, key) == getattr(prof, key)
     assert declared_tools(back)["punch4"].diameter == 4.0
+
+
+def test_one_tool_drawing_lines_and_dotting_holes(aama_job):
+    """The pen draws the internal lines and dots the drill holes in one pass."""
+    prof = replace(load_profile(MACHINE), tool_map={"drill": "pen", "internal": "pen"})
+    parts = aama_job.parts_to_cut
+    text = tool_export.render(aama_job.plan, parts, prof, "gcode")
+    events = trace(text, prof)
+    downs = [(x - 40.0, y + 25.0) for t, e, x, y, _ in events if t == 3 and e == "down"]
+    assert len(downs) == 765 + 30
+    for p in parts:
+        for m in p.marks:
+            if m.kind == "drill":
+                assert min(math.dist(d, m.position) for d in downs) < 1e-3
+    hp = replace(load_profile("hpgl_drag_knife"), tools=[{"name": "pen", "kind": "pen"}],
+                 tool_map={"drill": "pen", "internal": "pen"}, table_size=(3000.0, 20000.0))
+    text = tool_export.render(aama_job.plan, parts, hp, "hpgl")
+    pen = text.split("SP2;")[1].split("SP1;")[0]
+    assert pen.count("PD;PU;") == 30 and pen.count("PD") > 765

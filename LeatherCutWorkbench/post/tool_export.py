@@ -65,15 +65,16 @@ def _shift(items: Sequence[CutItem], off: Point) -> List[CutItem]:
             for it in items]
 
 
-def _strikes(p: ToolPass, prof: MachineProfile, home: Point) -> Toolpath:
-    """Rapid, tool on, tool off (and a sync) at every point of ``p``."""
+def _strikes(p: ToolPass, prof: MachineProfile, start: Point, first: int) -> Toolpath:
+    """Rapid, tool on, tool off (and a sync) at every point of ``p``; items
+    numbered from ``first``."""
     tp = Toolpath()
-    here = home
+    here = start
     dx, dy = p.tool.offset
-    for i, (x, y) in enumerate(p.points, 1):
+    for i, (x, y) in enumerate(p.points, first):
         sid = seg_id(i, 1)
         tp.segment_ids.append(sid)
-        tp.item_labels.append(f"{p.tool.kind} {p.tool.name} #{i}")
+        tp.item_labels.append(f"{p.tool.kind} {p.tool.name} #{i - first + 1}")
         at = (x - dx, y - dy)
         tp.moves.append(Move("rapid", seg=sid, x=at[0], y=at[1], feed=prof.rapid_feed, item=i,
                              start=here))
@@ -83,12 +84,6 @@ def _strikes(p: ToolPass, prof: MachineProfile, home: Point) -> Toolpath:
             tp.moves.append(Move("sync", item=i, start=at))
         here = at
     return tp
-
-
-def _preamble(profile: MachineProfile, home: Point) -> List[Move]:
-    """The moves a job starts with (vacuum / plate on, settle dwell)."""
-    moves = build_toolpath(CutPlan([], home=home), profile).moves
-    return moves[:next(i for i, m in enumerate(moves) if m.kind == "rapid")]
 
 
 def _renumber(tp: Toolpath, offset: int) -> Toolpath:
@@ -101,28 +96,32 @@ def _renumber(tp: Toolpath, offset: int) -> Toolpath:
     return Toolpath(moves, [sid(s) for s in tp.segment_ids], [""] * offset + tp.item_labels)
 
 
+def _pass_toolpath(p: ToolPass, prof: MachineProfile, home: Point, first: bool,
+                   last: bool) -> Toolpath:
+    """Moves of one pass: its lines (the ordinary toolpath builder), then its
+    strikes; the job's preamble (vacuum / plate on) only on the ``first``
+    pass, the return home and vacuum off only on the ``last``."""
+    tp = build_toolpath(CutPlan(_shift(p.items, p.tool.offset), home=home), prof)
+    mv = tp.moves
+    at_items = [i for i, m in enumerate(mv) if m.item]
+    lo = at_items[0] if at_items else next(i for i, m in enumerate(mv) if m.kind == "rapid")
+    hi = at_items[-1] + 1 if at_items else lo
+    end = (mv[hi - 1].x, mv[hi - 1].y) if at_items else home
+    hits = _strikes(p, prof, end, len(p.items) + 1)
+    moves = (mv[:lo] if first else []) + mv[lo:hi] + hits.moves + (mv[hi:] if last else [])
+    return Toolpath(moves, tp.segment_ids + hits.segment_ids, tp.item_labels + hits.item_labels)
+
+
 def _pass_toolpaths(job: ToolJob, profile: MachineProfile) -> List[tuple]:
-    """(pass, profile, toolpath renumbered through the job) for every pass; the
-    job's vacuum-on preamble stays on the first pass, the return home and
-    vacuum-off on the last."""
+    """(pass, profile, toolpath renumbered through the job) for every pass."""
     out = []
     offset = 0
     last = len(job.passes) - 1
     for k, p in enumerate(job.passes):
         prof = pass_profile(p, profile)
-        if p.points:
-            tp = _strikes(p, prof, job.home)
-            n = len(p.points)
-            if k == 0:                    # the job's vacuum / plate on comes first
-                tp.moves[:0] = _preamble(profile, job.home)
-        else:
-            tp = build_toolpath(CutPlan(_shift(p.items, p.tool.offset), home=job.home), prof)
-            n = len(p.items)
-            items = [i for i, m in enumerate(tp.moves) if m.item]
-            lo, hi = (items[0], items[-1] + 1) if items else (0, 0)
-            tp.moves = tp.moves[lo if k else 0: hi if k < last else len(tp.moves)]
+        tp = _pass_toolpath(p, prof, job.home, k == 0, k == last)
         out.append((p, prof, _renumber(tp, offset)))
-        offset += n
+        offset += len(p.items) + len(p.points)
     return out
 
 
@@ -178,27 +177,21 @@ def program(plan: CutPlan, parts: Sequence[Part], profile: MachineProfile,
 
 
 def hpgl_text(job: ToolJob, profile: MachineProfile, options=None) -> str:
-    """HP-GL: ``SPn`` before each tool's pass (n = the tool's number), strikes
-    as ``PUx,y;PD;PU;``."""
+    """HP-GL: ``SPn`` before each tool's pass (n = the tool's number), its
+    lines as ``PU``/``PD``, its strikes as ``PUx,y;PD;PU;``."""
     from . import hpgl, safety
 
     out: List[str] = []
     k_mm = profile.hpgl_units_per_mm
     ox, oy = profile.origin
-    for k, (p, prof, tp) in enumerate(_pass_toolpaths(job, profile)):
-        if p.points:
-            safety.check_moves(tp, prof)
-            if not out:
-                out += hpgl.export(CutPlan([], home=job.home), prof, options).splitlines()[:3]
-            out.append(f"SP{p.tool.number};")
-            for m in tp.moves:
-                if m.kind == "rapid" and m.item:
-                    out.append(f"PU{int(round((m.x + ox) * k_mm))},{int(round((m.y + oy) * k_mm))};"
-                               "PD;PU;")
-            continue
-        text = hpgl.export(CutPlan(_shift(p.items, p.tool.offset), home=job.home), prof, options)
-        body = text.splitlines()
+    for p, prof, tp in _pass_toolpaths(job, profile):
+        safety.check_moves(tp, prof)
+        body = hpgl.export(CutPlan(_shift(p.items, p.tool.offset), home=job.home), prof,
+                           options).splitlines()
         out += (body[:4] if not out else body[3:4]) + body[4:-1]
+        dx, dy = p.tool.offset
+        out += [f"PU{int(round((x - dx + ox) * k_mm))},{int(round((y - dy + oy) * k_mm))};PD;PU;"
+                for x, y in p.points]
     out.append("SP0;")
     text = "\n".join(out) + "\n"
     hpgl.check_instructions(text)
