@@ -259,3 +259,13 @@ def test_one_tool_drawing_lines_and_dotting_holes(aama_job):
     text = tool_export.render(aama_job.plan, parts, hp, "hpgl")
     pen = text.split("SP2;")[1].split("SP1;")[0]
     assert pen.count("PD;PU;") == 30 and pen.count("PD") > 765
+
+
+def test_line_numbers_run_through_the_whole_multi_tool_program(aama_job):
+    from LeatherCutWorkbench.post.gcode import ExportOptions
+    prof = load_profile(MACHINE)
+    text = tool_export.render(aama_job.plan, aama_job.parts_to_cut, prof, "gcode",
+                              ExportOptions(line_numbers=True))
+    blocks = [ln for ln in text.splitlines() if not ln.startswith("(")]
+    assert [int(b.split()[0][1:]) for b in blocks] == list(range(1, len(blocks) + 1))
+    assert "N" not in "".join(ln for ln in text.splitlines() if ln.startswith("(LeatherCut"))

@@ -155,11 +155,7 @@ def gcode_program(job: ToolJob, profile: MachineProfile, options=None):
     numbered = profile.line_numbers if (options is None or options.line_numbers is None) \
         else options.line_numbers
     if numbered:
-        n = 0
-        for k, line in enumerate(out.lines):
-            if not line.startswith("("):
-                n += 1
-                out.lines[k] = f"N{n} {line}"
+        gcode.number_lines(out.lines)
     safety.check_lines(out.lines, profile)
     return out
 
