@@ -89,7 +89,7 @@ def test_every_drill_hole_is_one_punch_before_its_part_is_cut(aama_job):
     assert len(strikes) == len(drills)
     for _, pos in drills:                                  # exactly one punch per hole
         assert sum(1 for s in strikes if math.dist(s, pos) < 1e-3) == 1
-    # knife: one slit per notch, starting on the outline and 3 mm long, each cut
+    # knife: one slit per notch, from the outline 3 mm into the part, each cut
     # before the outer contour of its part
     order = [it for it in job.main.items]
     slits = [k for k, it in enumerate(order) if it.contour_id.endswith("/notch")]
@@ -102,7 +102,8 @@ def test_every_drill_hole_is_one_punch_before_its_part_is_cut(aama_job):
     for pid, pos in notches:              # one slit per notch mark (some marks coincide)
         same = sum(1 for q, p2 in notches if q == pid and math.dist(p2, pos) < 0.05)
         assert sum(1 for k in slits if order[k].part_id == pid
-                   and math.dist(order[k].segments[0].start, pos) < 0.05) == same
+                   and min(math.dist(order[k].start, pos), math.dist(order[k].end, pos)) < 0.05) \
+            == same
     # all strikes (T2) and pen lines (T3) happen before the first knife plunge (T1)
     first_knife = next(i for i, ev in enumerate(events) if ev[0] == 1 and ev[1] == "down")
     assert all(i < first_knife for i, ev in enumerate(events) if ev[0] in (2, 3))
@@ -269,3 +270,30 @@ def test_line_numbers_run_through_the_whole_multi_tool_program(aama_job):
     blocks = [ln for ln in text.splitlines() if not ln.startswith("(")]
     assert [int(b.split()[0][1:]) for b in blocks] == list(range(1, len(blocks) + 1))
     assert "N" not in "".join(ln for ln in text.splitlines() if ln.startswith("(LeatherCut"))
+
+
+def test_layer_keys_and_none_in_the_tool_map(aama_job):
+    prof = load_profile(MACHINE)
+    parts = aama_job.parts_to_cut
+    job = tool_export.job_for(aama_job.plan, parts, prof, {"layer:8": "crease", "notch": "none"})
+    passes = {p.tool.name: p for p in job.passes}
+    assert set(passes) == {"crease", "punch4", "knife"}          # layer 8 = the internal lines
+    assert passes["crease"].roles == {"internal": 765} and passes["knife"].roles == {}
+    assert len(passes["knife"].items) == len(aama_job.plan.items)   # no slits: notch unmapped
+    assert any(f.code == "role-not-mapped" and "39 notch" in f.message for f in job.findings)
+
+
+def test_notch_slits_run_into_the_part(aama_job):
+    from shapely.geometry import Point as SPoint, Polygon
+    prof = load_profile(MACHINE)
+    job = tool_export.job_for(aama_job.plan, aama_job.parts_to_cut, prof)
+    parts = {p.id: p for p in aama_job.parts_to_cut}
+    slits = [it for it in job.main.items if it.contour_id.endswith("/notch")]
+    assert len(slits) == 39
+    for it in slits:
+        poly = Polygon(parts[it.part_id].outer.points(0.01))
+        ends = [SPoint(it.start), SPoint(it.end)]
+        on = [e.distance(poly.exterior) < 0.05 for e in ends]
+        assert sum(on) == 1                                  # one end on the outline
+        inner = ends[on.index(False)]
+        assert poly.contains(inner) and inner.distance(poly.exterior) > 2.0

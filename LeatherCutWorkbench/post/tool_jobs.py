@@ -11,7 +11,7 @@ given to the tool its role is mapped to (post/tools.py).  Order:
 * what the main knife does besides the plan -- notch slits of
   ``notch_length`` mm into the part along the outline normal, lines mapped to
   the knife -- is cut right before the outer contour of its part (after its
-  holes), so it too happens before the part is free.
+  holes, nearest first), so it too happens before the part is free.
 
 Within a pass, lines are ordered by the path planner (nearest neighbour, both
 directions) and strikes by nearest neighbour.  Coordinates are drawn (plan)
@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence
 
-from ..core.geometry import LineSeg, Point, dist
+from ..core.geometry import LineSeg, Point, dist, reverse_path
 from ..core.model import CutItem, CutPlan, Finding, OpenChain, Part
 from .tools import Tool, role_of
 
@@ -101,6 +101,23 @@ def _nn_points(points: Sequence[Point], start: Point) -> List[Point]:
     return out
 
 
+def _nn_items(items: Sequence[CutItem], start: Point) -> List[CutItem]:
+    """Open items in nearest-neighbour order from ``start``, each cut from its
+    nearer end."""
+    left = list(items)
+    out: List[CutItem] = []
+    here = start
+    while left:
+        k = min(range(len(left)), key=lambda i: min(dist(here, left[i].start), dist(here, left[i].end)))
+        it = left.pop(k)
+        if dist(here, it.end) < dist(here, it.start):
+            segs = reverse_path(it.segments)
+            it = CutItem(it.contour_id, it.part_id, it.kind, segs[0].start, segs)
+        out.append(it)
+        here = it.end
+    return out
+
+
 def _order_lines(chains: Sequence[OpenChain], home: Point) -> List[CutItem]:
     from ..core.pathplan import PlanOptions, plan
 
@@ -160,7 +177,8 @@ def build_tool_job(plan: CutPlan, parts: Sequence[Part], mapping: Dict[str, Tool
     placed = set()
     for it in plan.items:
         if it.kind == "outer" and it.part_id in before_outer and it.part_id not in placed:
-            main_pass.items.extend(before_outer[it.part_id])
+            here = main_pass.items[-1].end if main_pass.items else plan.home
+            main_pass.items.extend(_nn_items(before_outer[it.part_id], here))
             placed.add(it.part_id)
         main_pass.items.append(it)
     lost = sum(len(v) for k, v in before_outer.items() if k not in placed)
