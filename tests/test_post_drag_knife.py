@@ -88,6 +88,9 @@ def test_blade_offset_refused_on_tangential_knife(tmp_path, monkeypatch, capsys)
     base = json.load(open(load_profile("grblhal_tangential").source))
     with pytest.raises(InputError, match="blade_offset"):
         profile_from_dict(dict(base, blade_offset=0.3), source="x.json")
+    torch = json.load(open(load_profile("flame_plasma").source))
+    with pytest.raises(InputError, match="blade_offset.*torch"):
+        profile_from_dict(dict(torch, blade_offset=0.3), source="t.json")
     with pytest.raises(InputError, match="swivel_angle"):
         profile_from_dict(dict(base, swivel_angle=200), source="x.json")
     bad = tmp_path / "bad.json"

@@ -298,9 +298,10 @@ def _validate(p: MachineProfile, source: str) -> None:
             fail(f"{key} must not be negative")
     if p.blade_offset < 0:
         fail("blade_offset must not be negative (mm)")
-    if p.blade_offset > 0 and p.tool == "tangential_knife":
-        fail("blade_offset is for a drag knife: this profile's tool is tangential_knife "
-             "(its blade is turned by the rotary axis, so there is no trailing offset); "
+    if p.blade_offset > 0 and p.tool != "drag_knife":
+        why = {"tangential_knife": " (its blade is turned by the rotary axis, so there is no "
+                                   "trailing offset)"}.get(p.tool, "")
+        fail(f"blade_offset is for a drag knife: this profile's tool is {p.tool}{why}; "
              "set blade_offset to 0 or tool to drag_knife")
     if not 0.0 <= p.swivel_angle <= 180.0:
         fail("swivel_angle must lie in [0, 180] degrees")
