@@ -68,9 +68,9 @@ def test_drag_knife_hpgl_job_from_the_workbench(doc, tmp_path):
     job.PlanMoveToOrigin, job.PlanOriginOffset = True, 10.0
     job.PostMachine, job.PostFormat = "hpgl_drag_knife", "hpgl"
     job.PostOutputFile = str(tmp_path / "job.plt")
-    for stage in ("Import", "Recognise", "Plan"):        # Plan path honours PlanMoveToOrigin
-        pipeline.run_stage(job, stage)
-    assert pipeline.run_stage(job, "Post") == job.PostOutputFile
+    # Run job honours PlanMoveToOrigin like Plan path (it did not: the drawing
+    # was cut where it lies, off the table, and marks and plan disagreed)
+    assert pipeline.run_all(job) == job.PostOutputFile
     plan = pipeline.stored_plan(job)
     strokes = hpgl.read_hpgl(open(job.PostOutputFile).read(), 40)
     away, at_swivel = split_deviation(simulate(strokes, 0.25), drawn_lines(plan),

@@ -683,8 +683,10 @@ def _run_prepare(job):
     from ..core.job import JobOptions
     path, import_opts = _import_prepare(job)
     nest_opts = stage_options(job, "Nest") if job.NestContainer != "none" else None
+    move = job.PlanOriginOffset if getattr(job, "PlanMoveToOrigin", False) else None
     return path, JobOptions(import_=import_opts, recognise=stage_options(job, "Recognise"),
-                            nest=nest_opts, plan=with_machine(stage_options(job, "Plan"), job))
+                            nest=nest_opts, plan=with_machine(stage_options(job, "Plan"), job),
+                            move_to_origin=move)
 
 
 def _run_compute(inputs, progress):
