@@ -115,8 +115,9 @@ def test_no_offset_keeps_output_unchanged(deepnest_plan):
     assert hpgl.export(deepnest_plan, prof) == hpgl.export(deepnest_plan, replace(prof, swivel_angle=30))
 
 
-def test_cli_drag_knife_hpgl_job(tmp_path, monkeypatch, capsys):
-    """End to end from the command line: a real drawing to a compensated .plt."""
+def test_cli_drag_knife_hpgl_job(tmp_path, monkeypatch, capsys, deepnest_plan):
+    """End to end from the command line: a real drawing to a compensated .plt
+    (the CLI plans the same way as the fixture: nearest neighbour, moved 10 mm)."""
     monkeypatch.setattr(cli, "VERB_MODULES", ["post"])
     out = tmp_path / "job.plt"
     assert cli.main(["post", os.path.join(SAMPLES_DIR, "deepnest_ReadMeExampleSmall.dxf"),
@@ -124,7 +125,6 @@ def test_cli_drag_knife_hpgl_job(tmp_path, monkeypatch, capsys):
                      "--plan-method", "nn", "--move-to-origin", "10", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["machine"] == "hpgl_drag_knife" and out.exists()
-    res = run_job(os.path.join(SAMPLES_DIR, "deepnest_ReadMeExampleSmall.dxf"),
-                  JobOptions(plan=PlanOptions(method="nn"), move_to_origin=10.0))
-    away, at_swivel = tip_deviation(res.plan, hpgl.read_hpgl(out.read_text(), 40), 0.25, 10.0)
+    assert data["items"] == len(deepnest_plan.items)
+    away, at_swivel = tip_deviation(deepnest_plan, hpgl.read_hpgl(out.read_text(), 40), 0.25, 10.0)
     assert away <= TOL and at_swivel <= TOL
