@@ -313,12 +313,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="83"/>
-        <source>Copied to {0}; edit it with any text editor.</source>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="116"/>
+        <source>Copied to {0}; edit it here (Save edits) or with any text editor.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="74"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="107"/>
         <source>Copy profile</source>
         <translation type="unfinished"></translation>
     </message>
@@ -468,13 +468,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="75"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="108"/>
         <source>Name of the copy:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="91"/>
         <source>No collisions.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="84"/>
+        <source>Not valid JSON: {0} at line {1}; not saved.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -533,6 +538,11 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="91"/>
+        <source>Saved {0}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="24"/>
         <source>Saving vs drawing order</source>
         <translation type="unfinished"></translation>
@@ -545,6 +555,11 @@
     <message>
         <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="284"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="74"/>
+        <source>Shipped profiles are read-only: copy this one to the user folder to edit it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -613,7 +628,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="45"/>
         <source>shipped</source>
         <translation type="unfinished"></translation>
     </message>
@@ -643,7 +658,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="45"/>
         <source>user</source>
         <translation type="unfinished"></translation>
     </message>
@@ -678,7 +693,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="67"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="100"/>
         <source>{0} uses {1}.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -690,6 +705,11 @@
     <message>
         <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="239"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="88"/>
+        <source>{0}; not saved.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -803,12 +823,12 @@
 <context>
     <name>LeatherCut_MachineProfiles</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="96"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="129"/>
         <source>Browse machine profiles (table, speeds, knife, I/O), choose the job's machine or copy a profile to edit it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="95"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="128"/>
         <source>Machine profiles…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -907,6 +927,10 @@
 <context>
     <name>MachineProfiles</name>
     <message>
+        <source>Check the edited profile (every field, e.g. blade_offset, tools, tool_map) and save it; user profiles only</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Copy to user folder…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -916,6 +940,10 @@
     </message>
     <message>
         <source>Open user folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Save edits</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
