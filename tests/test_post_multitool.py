@@ -297,3 +297,19 @@ def test_notch_slits_run_into_the_part(aama_job):
         assert sum(on) == 1                                  # one end on the outline
         inner = ends[on.index(False)]
         assert poly.contains(inner) and inner.distance(poly.exterior) > 2.0
+
+
+def test_multi_tool_program_keeps_segment_ids_for_the_live_link(aama_job):
+    """``send`` streams tool_export.program: one id per segment through the
+    whole job, and the (seg I:S) comments of the file give the same ids back
+    (what the link journals and resumes from)."""
+    from LeatherCutWorkbench.post.gcode import segment_map
+    prof = load_profile(MACHINE)
+    prog = tool_export.program(aama_job.plan, aama_job.parts_to_cut, prof)
+    assert len(prog.lines) == len(prog.segs)
+    job = tool_export.job_for(aama_job.plan, aama_job.parts_to_cut, prof)
+    assert len(set(prog.segment_ids)) == len(prog.segment_ids) == sum(
+        len(it.segments) for p in job.passes for it in p.items) + 30
+    segs, order = segment_map(prog.lines)
+    assert order == prog.segment_ids
+    assert all(a == b for a, b, ln in zip(segs, prog.segs, prog.lines) if not ln.startswith("("))
