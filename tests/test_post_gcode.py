@@ -296,3 +296,13 @@ def test_sync_every_segment_is_validated(tmp_path):
     with pytest.raises(InputError, match="sync_every_segment"):
         profile_from_dict({**hpgl, "sync_every_segment": True}, source="plotter.json")
     assert profile_from_dict({**hpgl, "sync_every_segment": False}).sync_every_segment is False
+
+
+def test_wrapped_axis_same_angle_is_no_turn():
+    """A C word naming the angle the axis is already at (up to float noise of
+    the wrapped position, e.g. 870.658 mod 360) does not turn the knife, as in
+    LinuxCNC 2.9 (found in a multi-tool job, tests/test_post_rs274.py)."""
+    it = read_program("G0 C150.658\nG0 C330.658\nG0 C150.658\nG0 C330.658\nG0 C150.658\n"
+                      "G1 X1 C150.658 F100\nG1 X2 C-150.658\n", wrapped="C")
+    ends = [round(m.end["C"], 6) for m in it.moves if m.kind in ("rapid", "line")]
+    assert ends == [150.658, 330.658, 510.658, 690.658, 870.658, 870.658, 870.658]

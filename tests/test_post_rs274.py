@@ -43,10 +43,10 @@ WRAPPED_ROTARY = 1
 CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED)\(([^)]*)\)")
 
 
-def run_rs274(tmp_path, text):
+def run_rs274(tmp_path, text, tool_table=""):
     (tmp_path / "m.ini").write_text(INI)
     (tmp_path / "empty.var").write_text("")
-    (tmp_path / "tool.tbl").write_text("")
+    (tmp_path / "tool.tbl").write_text(tool_table)
     (tmp_path / "job.ngc").write_text(text)
     libs = [os.path.join(RS_DIR, "root", "usr", "lib"),
             os.path.join(RS_DIR, "root", "usr", "lib", "x86_64-linux-gnu")]
@@ -109,3 +109,28 @@ def test_linuxcnc_interpreter_refuses_what_we_must_not_write(tmp_path):
     assert rc != 0 and "wrapped rotary" in out
     rc, out, canon = run_rs274(tmp_path, "G21 G90\nG0 X10 Y10 C90\nG0 C-0\nM2\n")
     assert rc == 0 and canon_moves(canon)[-1][4] == 0.0     # -90 degrees to 0
+
+
+def test_linuxcnc_interpreter_takes_a_multi_tool_job(tmp_path):
+    """Knife + punch + pen on one size of the real AAMA sample: LinuxCNC
+    accepts every line, changes tools T3 -> T2 -> T1 and moves as we trace."""
+    from LeatherCutWorkbench.core.job import JobOptions, run_job
+    from LeatherCutWorkbench.core.pathplan import PlanOptions
+    from LeatherCutWorkbench.post import tool_export
+
+    from test_post_multitool import MACHINE, one_size
+
+    res = run_job(one_size(tmp_path), JobOptions(plan=PlanOptions(method="nn"),
+                                                 move_to_origin=100.0))
+    profile = load_profile(MACHINE)
+    text = tool_export.render(res.plan, res.parts_to_cut, profile, "gcode")
+    rc, out, canon = run_rs274(tmp_path, text, "".join(f"T{n} P{n}\n" for n in range(1, 5)))
+    assert rc == 0, out
+    assert re.findall(r"CHANGE_TOOL\((\d+)\)", canon) == ["3", "2", "1"]
+    moves = canon_moves(canon)
+    theirs = [m for k, m in enumerate(moves)        # LinuxCNC also reports null moves
+              if k == 0 or any(abs(a - b) > 1e-9 for a, b in zip(m[1:5], moves[k - 1][1:5]))]
+    ours = our_moves(text, profile)
+    assert len(theirs) == len(ours) > 500
+    for t, o in zip(theirs, ours):
+        assert t[0] == o[0] and all(abs(a - b) < 1e-4 for a, b in zip(t[1:5], o[1:5])), (t, o)

@@ -25,6 +25,10 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    metavar="NAME_OR_FILE",
                    help=f"machine profile name or JSON file (default {DEFAULT_MACHINE}; "
                         "see docs/MACHINES.md)")
+    g.add_argument("--tool-map", dest="post_tool_map", default="", metavar="ROLE=TOOL,...",
+                   help="which tool does which role, on top of the profile's tool_map: roles "
+                        "drill, notch, point, internal, stitch or layer:NAME; tools as declared in "
+                        "the profile (e.g. stitch=pen,drill=punch4,notch=knife; none = not done)")
     if not primary:
         return
     g.add_argument("--format", dest="post_format", choices=FORMATS, default="gcode",
@@ -69,20 +73,17 @@ def plan_drawing(args: argparse.Namespace, profile) -> Any:
     return run_job(args.file, opts)
 
 
-def render(plan, profile, fmt: str, options, marks=()) -> str:
-    """The output text for ``fmt`` (safety-checked; raises SafetyError).
-    ``marks`` (drill holes, notches of the parts) go on the DXF's MARKS layer."""
-    from ..post import dxf_out, gcode, hpgl
+def tool_overrides(args: argparse.Namespace):
+    """``--tool-map`` as a role -> tool dict (checked against the profile later)."""
+    from ..post.tools import parse_tool_map
 
-    if fmt == "gcode":
-        return gcode.export(plan, profile, options)
-    if fmt == "hpgl":
-        return hpgl.export(plan, profile, options)
-    return dxf_out.export(plan, profile, dxf_out.DxfOptions(marks=list(marks)))
+    return parse_tool_map(getattr(args, "post_tool_map", "") or "")
 
 
 def run(args: argparse.Namespace) -> Report:
+    from ..post import tool_export
     from ..post.profiles import load_profile
+    from ..post.tools import tool_map
 
     profile = load_profile(args.post_machine)
     fmt = args.post_format
@@ -92,9 +93,11 @@ def run(args: argparse.Namespace) -> Report:
     if fmt == "hpgl" and profile.dialect != "hpgl":
         raise InputError(f"profile {profile.name} is for {profile.dialect}, not HP-GL",
                          source=args.file)
+    tool_map(profile, tool_overrides(args))        # a bad --tool-map fails before planning
     result = plan_drawing(args, profile)
-    marks = [m for part in result.parts_to_cut for m in part.marks]
-    text = render(result.plan, profile, fmt, options_from_args(args), marks)
+    tools = tool_export.job_for(result.plan, result.parts_to_cut, profile, tool_overrides(args))
+    text = tool_export.render(result.plan, result.parts_to_cut, profile, fmt,
+                              options_from_args(args), job=tools)
     out = args.post_output
     tmp = out + ".part"
     try:
@@ -110,7 +113,8 @@ def run(args: argparse.Namespace) -> Report:
         "format": fmt, "output": out, "bytes": len(text.encode("ascii")), "lines": n_lines,
         "items": len(plan.items), "segments": sum(len(i.segments) for i in plan.items),
         "cut_length_mm": round(sum(i.length for i in plan.items), 3),
-        "findings": [f.to_json() for f in result.findings],
+        "tools": tool_export.tool_report(tools, profile),
+        "findings": [f.to_json() for f in result.findings + tools.findings],
     }
     text_out = (f"{args.file}: {data['items']} items, {data['segments']} segments, "
                 f"cut {data['cut_length_mm']:.1f} mm -> {out} ({fmt}, {profile.name}, "

@@ -35,7 +35,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> Report:
-    from ..post import gcode, svg_preview
+    from ..post import svg_preview, tool_export
     from ..post.profiles import load_profile
 
     if not os.path.isfile(args.file):
@@ -45,9 +45,12 @@ def run(args: argparse.Namespace) -> Report:
         raise InputError(f"profile {profile.name} is for {profile.dialect}, but run writes G-code "
                          f"(job.nc); use 'leathercut post --format {profile.dialect}'",
                          source=args.post_machine)
+    overrides = post_cmd.tool_overrides(args)
+    tool_export.tool_map(profile, overrides)       # a bad --tool-map fails before planning
     result = run_job(args.file, job_options(args, before="end", machine=profile),
                      None if args.json else progress_bar())
-    text_nc = gcode.export(result.plan, profile)
+    tools = tool_export.job_for(result.plan, result.parts_to_cut, profile, overrides)
+    text_nc = tool_export.render(result.plan, result.parts_to_cut, profile, "gcode", job=tools)
     outdir = args.outdir
     try:
         os.makedirs(outdir, exist_ok=True)
@@ -56,12 +59,15 @@ def run(args: argparse.Namespace) -> Report:
     paths = {name: os.path.join(outdir, name) for name in ("job.nc", "preview.svg", "report.json")}
     data = job_report(result)
     data["machine"] = profile.name
+    data["tools"] = tool_export.tool_report(tools, profile)
+    data["findings"] += [f.to_json() for f in tools.findings]
     data["outputs"] = paths
     with open(paths["job.nc"], "w", encoding="ascii", newline="\n") as fh:
         fh.write(text_nc)
     with open(paths["preview.svg"], "w", encoding="utf-8") as fh:
-        fh.write(svg_preview.render(result.plan, result.parts_to_cut,
-                                    title=os.path.basename(args.file)))
+        fh.write(svg_preview.render(tools.main.plan(result.plan.home), result.parts_to_cut,
+                                    title=os.path.basename(args.file),
+                                    tools=tool_export.preview_tools(tools)))
     with open(paths["report.json"], "w", encoding="utf-8") as fh:
         json.dump(data, fh, indent=2)
         fh.write("\n")

@@ -66,7 +66,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 def load_job(args: argparse.Namespace, profile):
     """The SendJob for FILE: G-code files as they are (safety-checked), drawings
     planned and posted for ``profile``."""
-    from ..post import gcode, safety
+    from ..post import safety, tool_export
     from ..post.link import job_from_file, job_from_program
 
     if not os.path.isfile(args.file):
@@ -75,8 +75,10 @@ def load_job(args: argparse.Namespace, profile):
         job = job_from_file(args.file)
         safety.check_program(job.source, profile, args.file)
         return job
+    overrides = post_cmd.tool_overrides(args)
+    tool_export.tool_map(profile, overrides)       # a bad --tool-map fails before planning
     result = post_cmd.plan_drawing(args, profile)
-    prog = gcode.build_program(result.plan, profile)
+    prog = tool_export.program(result.plan, result.parts_to_cut, profile, overrides)
     name = os.path.splitext(os.path.basename(args.file))[0] + ".nc"
     return job_from_program(name, prog)
 

@@ -1,5 +1,6 @@
 """*Machine profiles*: browse the shipped and user machine profiles, pick one for
-the job, or copy one into the user folder to edit it."""
+the job, copy one into the user folder and edit it there (every field,
+checked like a profile file on *Save edits*)."""
 
 from __future__ import annotations
 
@@ -18,7 +19,9 @@ translate = FreeCAD.Qt.translate
 
 class ProfilesPanel(panel.CloseOnlyPanel):
     """List of profiles with their settings; *Use for this job* sets the job's
-    machine (one undo step); *Copy to user folder* makes an editable copy."""
+    machine (one undo step); *Copy to user folder* makes an editable copy;
+    *Save edits* checks the edited JSON of a user profile (the message names
+    the field, e.g. ``blade_offset`` on a tangential knife) and saves it."""
 
     def __init__(self, job):
         from ..post import profiles
@@ -31,6 +34,7 @@ class ProfilesPanel(panel.CloseOnlyPanel):
         self.form.findChild(QtGui.QPushButton, "useButton").clicked.connect(self.use)
         self.form.findChild(QtGui.QPushButton, "copyButton").clicked.connect(self.copy)
         self.form.findChild(QtGui.QPushButton, "folderButton").clicked.connect(self.open_folder)
+        self.form.findChild(QtGui.QPushButton, "saveButton").clicked.connect(self.save)
         self.list.currentRowChanged.connect(self.show_profile)
         self.reload()
 
@@ -52,11 +56,40 @@ class ProfilesPanel(panel.CloseOnlyPanel):
         e = self.current()
         if e is None:
             return
+        self.details.setReadOnly(e["origin"] != "user")
         try:
             prof = self.profiles.load_profile(e["path"])
             self.details.setPlainText(json.dumps(prof.to_json(), indent=2))
         except Exception as exc:
             self.details.setPlainText(str(exc))
+
+    def save(self) -> str:
+        """Check the edited JSON of the current user profile and save it; the
+        status line names what is wrong otherwise.  Returns the path saved."""
+        from ..core.errors import InputError
+        e = self.current()
+        if e is None:
+            return ""
+        if e["origin"] != "user":
+            self.status.setText(translate("LeatherCut", "Shipped profiles are read-only: copy "
+                                                        "this one to the user folder to edit it."))
+            return ""
+        try:
+            data = json.loads(self.details.toPlainText())
+            if not isinstance(data, dict):
+                raise InputError("a machine profile is a JSON object", source=e["path"])
+            data["name"] = e["name"]
+            prof = self.profiles.profile_from_dict(data, source=e["path"])
+        except json.JSONDecodeError as exc:
+            self.status.setText(translate("LeatherCut", "Not valid JSON: {0} at line {1}; not saved.")
+                                .format(exc.msg, exc.lineno))
+            return ""
+        except InputError as exc:
+            self.status.setText(translate("LeatherCut", "{0}; not saved.").format(exc))
+            return ""
+        path = self.profiles.save_user_profile(prof)
+        self.status.setText(translate("LeatherCut", "Saved {0}.").format(path))
+        return path
 
     def use(self) -> None:
         e = self.current()
@@ -80,7 +113,7 @@ class ProfilesPanel(panel.CloseOnlyPanel):
         from dataclasses import replace
         path = self.profiles.save_user_profile(replace(prof, name=name))
         self.reload()
-        self.status.setText(translate("LeatherCut", "Copied to {0}; edit it with any text editor.").format(path))
+        self.status.setText(translate("LeatherCut", "Copied to {0}; edit it here (Save edits) or with any text editor.").format(path))
         return path
 
     def open_folder(self) -> None:

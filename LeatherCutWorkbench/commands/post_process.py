@@ -38,6 +38,28 @@ class PostPanel(panel.StagePanel):
         if not job.PostOutputFile:
             self.set_widget("PostOutputFile", pipeline.default_output(job))
         combo.currentIndexChanged.connect(lambda _i: self._match_format())
+        edit = self.form.findChild(QtGui.QLineEdit, "PostToolMap")
+        if edit is not None:
+            edit.editingFinished.connect(self.show_tools)
+        self.show_tools()
+
+    def show_tools(self) -> None:
+        """The effective role -> tool map (profile tool_map + PostToolMap) and
+        the machine's tools, or why the map is refused."""
+        label = self.form.findChild(QtGui.QLabel, "toolMapLabel")
+        if label is None:
+            return
+        try:
+            from ..post.profiles import load_profile
+            from ..post.tools import declared_tools, describe, parse_tool_map, tool_map
+            prof = load_profile(self.job.PostMachine)
+            mapping = tool_map(prof, parse_tool_map(getattr(self.job, "PostToolMap", "") or "", "PostToolMap"),
+                               "PostToolMap")
+            label.setText(translate("LeatherCut", "Tools: {0}. Roles: {1}.").format(
+                ", ".join(f"{t.name} ({t.kind})" for t in declared_tools(prof).values()),
+                describe(mapping)))
+        except Exception as exc:
+            label.setText(str(exc))
 
     def _match_format(self) -> None:
         """Plotter profiles write HPGL, the others G-code (the user may still choose DXF)."""
@@ -46,6 +68,7 @@ class PostPanel(panel.StagePanel):
             dialect = load_profile(self.job.PostMachine).dialect
         except Exception:
             return
+        self.show_tools()
         if dialect == "hpgl" and self.job.PostFormat == "gcode":
             self.set_widget("PostFormat", "hpgl")
         elif dialect != "hpgl" and self.job.PostFormat == "hpgl":

@@ -23,18 +23,30 @@ DEFAULT_RAPID_FEED = 20000.0  # mm/min
 
 
 class Timeline:
-    """The knife's position over machine time (s) along the plan: idle moves at
-    the rapid feed, cuts at the cut feed (acceleration ignored)."""
+    """The head's position over machine time (s) along the plan: idle moves at
+    the rapid feed, cuts at the cut feed (acceleration ignored).  With
+    ``passes`` -- (tool name, feed mm/min, items, strike points) in machine
+    order, from a multi-tool job -- every tool's pass is played in turn and
+    ``what[k]`` names the tool of item ``k``."""
 
-    def __init__(self, plan, cut_feed: float, rapid_feed: float):
+    def __init__(self, plan, cut_feed: float, rapid_feed: float, passes=None):
         self.points: List[Tuple[float, float]] = [plan.home]
         self.times: List[float] = [0.0]
         self.item_at: List[int] = [-1]
-        cut_v, rapid_v = cut_feed / 60.0, rapid_feed / 60.0
-        for i, it in enumerate(plan.items):
-            self._add(it.start, rapid_v, -1)
-            for p in path_points(it.segments, 0.1)[1:]:
-                self._add(p, cut_v, i)
+        self.what: List[Tuple[str, int, int]] = []      # (tool, number in pass, pass size)
+        rapid_v = rapid_feed / 60.0
+        for tool, feed, items, points in passes or [("", cut_feed, plan.items, [])]:
+            cut_v = feed / 60.0
+            n = len(items) + len(points)
+            for k, it in enumerate(items):
+                self.what.append((tool, k + 1, n))
+                self._add(it.start, rapid_v, -1)
+                for p in path_points(it.segments, 0.1)[1:]:
+                    self._add(p, cut_v, len(self.what) - 1)
+            for k, p in enumerate(points):
+                self.what.append((tool, len(items) + k + 1, n))
+                self._add(p, rapid_v, -1)
+                self._add(p, rapid_v, len(self.what) - 1)
         self._add(plan.home, rapid_v, -1)
 
     def _add(self, p, speed: float, item: int) -> None:
@@ -73,7 +85,11 @@ class SimulatePanel:
             cut, rapid = prof.cut_feed, prof.rapid_feed
         except Exception:  # no profile: the defaults give a plausible animation
             pass
-        self.timeline = Timeline(plan, cut, rapid)
+        tools = pipeline.tool_job(job, plan)
+        passes = None if tools is None else [
+            (p.tool.name, cut if p.tool.main else p.tool.feed,
+             p.items, p.points) for p in tools.passes]
+        self.timeline = Timeline(plan, cut, rapid, passes)
         self.items = len(plan.items)
         self.form = Gui.PySideUic.loadUi(paths.ui("Simulate"))
         self.slider = self.form.findChild(QtGui.QSlider, "positionSlider")
@@ -110,8 +126,13 @@ class SimulatePanel:
         self.slider.blockSignals(True)
         self.slider.setValue(int(1000 * self.t / max(self.timeline.duration, 1e-9)))
         self.slider.blockSignals(False)
-        what = translate("LeatherCut", "cutting {0} of {1}").format(item + 1, self.items) if item >= 0 \
-            else translate("LeatherCut", "idle move (knife up)")
+        if item >= 0 and self.timeline.what[item][0]:
+            tool, k, n = self.timeline.what[item]
+            what = translate("LeatherCut", "{0}: {1} of {2}").format(tool, k, n)
+        elif item >= 0:
+            what = translate("LeatherCut", "cutting {0} of {1}").format(item + 1, self.items)
+        else:
+            what = translate("LeatherCut", "idle move (knife up)")
         self.label.setText(translate("LeatherCut", "t = {0:.1f} s of {1:.1f} s – {2}").format(
             self.t, self.timeline.duration, what))
 

@@ -301,6 +301,7 @@ class Part:
     mirror_allowed: bool = False
     grade: int = 0
     parent_id: Optional[str] = None    # part whose hole this part lies in
+    lines: List["OpenChain"] = field(default_factory=list)   # internal / stitch lines (drawn, not cut)
 
     @property
     def net_area(self) -> float:
@@ -319,6 +320,7 @@ class Part:
                        holes=[h.transformed(xf, prefix) for h in self.holes],
                        lead_ins=[li.transformed(xf, prefix) for li in self.lead_ins],
                        marks=[m.transformed(xf) for m in self.marks],
+                       lines=[ln.transformed(xf) for ln in self.lines],
                        rotations=copy.copy(self.rotations))
 
 

@@ -11,6 +11,7 @@ A job in a FreeCAD document is one group::
       Layout (group)                           nesting result (hidden Data)
         Container <id> / Placed <part>#<copy>  (Part::FeaturePython, movable by hand)
       Cut path (Part::FeaturePython)           the planned job (hidden Data), metrics
+      Tool paths (group)                       multi-tool jobs: Tool <name> per further tool
 
 Stage values are stored with :mod:`.codec` in hidden string properties, so they
 are saved with the document and undone like any other property.  Every object
@@ -152,6 +153,10 @@ def add_job_properties(obj) -> None:
     if "PostOutputFile" not in obj.PropertiesList:
         obj.addProperty("App::PropertyFile", "PostOutputFile", "Post",
                         "where Post-process writes the machine file")
+    if "PostToolMap" not in obj.PropertiesList:
+        obj.addProperty("App::PropertyString", "PostToolMap", "Post",
+                        "which tool does which role, on top of the profile's tool_map "
+                        "(e.g. stitch=pen,drill=punch4; docs/MACHINES.md)")
     if "PostPort" not in obj.PropertiesList:
         obj.addProperty("App::PropertyString", "PostPort", "Post",
                         "serial port or pyserial URL for Send to cutter (e.g. /dev/ttyUSB0, socket://host:23)")
@@ -211,6 +216,13 @@ class CutPathProxy(StageProxy):
         obj.setEditorMode("Items", 1)
         obj.addProperty("App::PropertyString", "Method", "Metrics", "planning method used")
         obj.setEditorMode("Method", 1)
+
+
+class ToolPathsProxy(StageProxy):
+    """What the further tools of a multi-tool job do (one shape per tool, in the
+    tool's colour), drawn next to the cut path; replaced with it."""
+
+    ROLE = "ToolPaths"
 
 
 class ShapeProxy(Proxy):

@@ -525,8 +525,51 @@ def _plan_apply(job, cut_plan: model.CutPlan):
     obj.Items = len(cut_plan.items)
     obj.Method = cut_plan.method
     obj.OutOfDate = False
+    _show_tools(job, cut_plan)
     objects.mark_out_of_date(job, "Plan", include_self=False)
     return obj
+
+
+def tool_job(job, cut_plan: model.CutPlan):
+    """The multi-tool job (post/tool_jobs.py) of ``cut_plan`` for the job's
+    machine and ``PostToolMap``; None when the machine has no further tools
+    in use or the profile / map would be refused by Post-process."""
+    from ..post import tool_export
+    from ..post.profiles import load_profile
+    from ..post.tools import parse_tool_map
+    try:
+        prof = load_profile(job.PostMachine)
+        tools = tool_export.job_for(cut_plan, parts_to_cut(job)[0], prof,
+                                    parse_tool_map(getattr(job, "PostToolMap", "") or "",
+                                                   "PostToolMap"), "PostToolMap")
+    except InputError:
+        return None
+    return tools if tool_export.is_multi(tools, cut_plan) else None
+
+
+def _show_tools(job, cut_plan: model.CutPlan) -> None:
+    """The passes of the further tools of the job's machine (pen lines, punch
+    points, ...), one shape per tool in its colour (post/tool_export.py), in a
+    *Tool paths* group replaced with the cut path.  Nothing when the machine
+    has no tool map; a map the Post stage would refuse shows no tools."""
+    from ..post import tool_export
+    old = objects.stage_object(job, objects.ToolPathsProxy.ROLE)
+    if old is not None:
+        objects.remove_tree(old)
+    tools = tool_job(job, cut_plan)
+    if tools is None or len(tools.passes) < 2:
+        return
+    grp = objects.make_stage_group(job, objects.ToolPathsProxy, "ToolPaths",
+                                   translate("LeatherCut", "Tool paths"))
+    for name, colour, items, points in tool_export.preview_tools(tools):
+        shape = shapes.compound([e for it in items for e in shapes.path_edges(it.segments)]
+                                + list(shapes.marker_points(points).Vertexes))
+        obj = objects.make_shape(grp, "Tool", translate("LeatherCut", "Tool {0}").format(name),
+                                 "tool", shape)
+        if FreeCAD.GuiUp:
+            rgb = tuple(int(colour[i:i + 2], 16) / 255.0 for i in (1, 3, 5))
+            obj.ViewObject.LineColor = obj.ViewObject.PointColor = rgb
+            obj.ViewObject.PointSize = 5.0
 
 
 def stored_plan(job) -> model.CutPlan:
@@ -549,16 +592,21 @@ def default_output(job) -> str:
 
 def _post_prepare(job):
     from ..post.profiles import load_profile
+    from ..post.tools import parse_tool_map, tool_map
     plan = stored_plan(job)
     check_gate(job)
     path = job.PostOutputFile or default_output(job)
-    return plan, load_profile(job.PostMachine), job.PostFormat, path
+    profile = load_profile(job.PostMachine)
+    overrides = parse_tool_map(getattr(job, "PostToolMap", "") or "", "PostToolMap")
+    tool_map(profile, overrides, "PostToolMap")   # a bad map is refused before anything is written
+    return plan, parts_to_cut(job)[0], profile, job.PostFormat, overrides, path
 
 
 def _post_compute(inputs, progress):
-    plan, profile, fmt, path = inputs
-    writer = importlib.import_module(f"LeatherCutWorkbench.post.{'dxf_out' if fmt == 'dxf' else fmt}")
-    text = writer.export(plan, profile)
+    from ..post import tool_export
+    plan, parts, profile, fmt, overrides, path = inputs
+    text = tool_export.render(plan, parts, profile, fmt, overrides=overrides,
+                              overrides_from="PostToolMap")
     return text, path
 
 

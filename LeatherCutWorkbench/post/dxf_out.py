@@ -9,14 +9,17 @@ Layers:
 * ``LEAD_IN`` -- the lead-in segments of each item,
 * ``IDLE``    -- knife-up travel: home -> first item -> ... -> home,
 * ``MARKS``   -- point marks (drill holes, notches) passed in the options,
-* ``ORDER``   -- the cut order number of each item as TEXT at its start.
+* ``ORDER``   -- the cut order number of each item as TEXT at its start,
+* ``TOOL_<NAME>`` -- one layer per further tool of a multi-tool job (pen and
+  crease lines, punch points with a circle of the punch diameter; drawn
+  positions, see post/tool_export.py).
 """
 
 from __future__ import annotations
 
 import io
 from dataclasses import dataclass, field
-from typing import List, Optional
+from typing import Dict, List, Optional
 
 from ..core.geometry import ArcSeg, CurveSeg, LineSeg
 from ..core.model import CutPlan, Mark
@@ -29,6 +32,7 @@ LAYERS = {"CUT": 7, "LEAD_IN": 3, "IDLE": 8, "MARKS": 1, "ORDER": 5}
 class DxfOptions:
     marks: List[Mark] = field(default_factory=list)
     text_height: float = 5.0          # mm, height of the order numbers
+    tool_layers: Dict[str, tuple] = field(default_factory=dict)   # layer -> (segments, points)
 
 
 def export(plan: CutPlan, profile: Optional[MachineProfile] = None, options=None) -> str:
@@ -57,6 +61,12 @@ def export(plan: CutPlan, profile: Optional[MachineProfile] = None, options=None
             msp.add_line(a, b, dxfattribs={"layer": "IDLE"})
     for m in opts.marks:
         msp.add_point(m.position, dxfattribs={"layer": "MARKS"})
+    for k, (name, (segs, points)) in enumerate(opts.tool_layers.items()):
+        doc.layers.add(name, color=10 + 20 * k)
+        for seg in segs:
+            _add_segment(msp, seg, name)
+        for p in points:
+            msp.add_point(p, dxfattribs={"layer": name})
     buf = io.StringIO()
     doc.write(buf)
     return buf.getvalue()

@@ -264,13 +264,18 @@ def build_program(plan: CutPlan, profile: MachineProfile,
 
     numbered = profile.line_numbers if opts.line_numbers is None else opts.line_numbers
     if numbered:
-        n = 0
-        for k, line in enumerate(prog.lines):
-            if not line.startswith("("):
-                n += 1
-                prog.lines[k] = f"N{n} {line}"
+        number_lines(prog.lines)
     safety.check_lines(prog.lines, profile)
     return prog
+
+
+def number_lines(lines: List[str]) -> None:
+    """Put ``N1``, ``N2``, ... before every block (not before comment lines), in place."""
+    n = 0
+    for k, line in enumerate(lines):
+        if not line.startswith("("):
+            n += 1
+            lines[k] = f"N{n} {line}"
 
 
 def export(plan: CutPlan, profile: MachineProfile, options: Optional[ExportOptions] = None) -> str:

@@ -7,7 +7,7 @@ rebuilds the modal state and position at a segment to resume from).
 It accepts the subset of RS274/NGC the GRBL family and LinuxCNC share and our
 writers emit: G0 G1 G2 G3 (I/J centre offsets, helical extra axes), G4, G17,
 G20/G21, G90/G91, G94, G40 G49 G54 G80 (accepted, no effect), M0 M1 M2 M30,
-M3 M4 M5, M7 M8 M9, M62-M66 (recorded as I/O events), F S P L Q E N T words.
+M3 M4 M5, M6 (tool change, the T word), M7 M8 M9, M62-M66 (recorded as I/O events), F S P L Q E N T words.
 Errors are raised as :class:`GcodeError` carrying the GRBL error number the
 firmware would answer (1 letter expected, 2 bad number, 20 unsupported command,
 21 modal group violation, 22 feed not set, 25 repeated word, 26 no axis words,
@@ -84,6 +84,8 @@ class ModalState:
     coolant: Set[str] = field(default_factory=set)
     outputs: Dict[int, bool] = field(default_factory=dict)
     ended: bool = False
+    prepared: int = 0          # T word seen (tool prepared)
+    tool: int = 0              # tool in the spindle after the last M6
 
 
 def strip_line(line: str) -> str:
@@ -131,7 +133,7 @@ class Interpreter:
     (LinuxCNC WRAPPED_ROTARY); ``mcodes``: accepted M numbers (None = all this
     interpreter knows)."""
 
-    KNOWN_M = {0, 1, 2, 30, 3, 4, 5, 7, 8, 9, 62, 63, 64, 65, 66}
+    KNOWN_M = {0, 1, 2, 30, 3, 4, 5, 6, 7, 8, 9, 62, 63, 64, 65, 66}
 
     def __init__(self, axes: str = "XYZC", wrapped: str = "", turn: float = 360.0,
                  mcodes: Optional[Set[int]] = None):
@@ -226,6 +228,10 @@ class Interpreter:
                 new.outputs[int(vals["P"])] = code in (62, 64)
             elif code in (0, 1, 2, 30):
                 new.ended = code in (2, 30)
+            elif code == 6:                 # tool change to the prepared (T) tool
+                new.tool = int(vals.get("T", new.prepared))
+        if "T" in vals:
+            new.prepared = int(vals.pop("T"))
         if any(c in (62, 63, 64, 65, 66) for c in m_codes):
             out.append(TraceMove("io", line_no, dict(self.pos), dict(self.pos),
                                  spindle=new.spindle, text=text))
@@ -306,9 +312,12 @@ class Interpreter:
             return cur + v
         target = abs(v) % self.turn
         here = cur % self.turn
+        eps = 1e-9 * self.turn          # float noise of ``cur % turn``: the same angle
         if v < 0 or (v == 0 and math.copysign(1.0, v) < 0):
-            return cur - ((here - target) % self.turn)
-        return cur + ((target - here) % self.turn)
+            d = (here - target) % self.turn
+            return cur - (0.0 if d > self.turn - eps or d < eps else d)
+        d = (target - here) % self.turn
+        return cur + (0.0 if d > self.turn - eps or d < eps else d)
 
 
 def read_program(text: str, axes: str = "XYZC", wrapped: str = "", turn: float = 360.0

@@ -77,11 +77,16 @@ def export(plan: CutPlan, profile: MachineProfile, options: Optional[ExportOptio
     flush()
     out.append("SP0;")
     text = "\n".join(out) + "\n"
+    check_instructions(text)
+    return text
+
+
+def check_instructions(text: str) -> None:
+    """Raise SafetyError for an instruction outside the HP-GL/1 cutter subset."""
     for n, instr in enumerate(_instructions(text), 1):
         if instr[:2] not in ALLOWED:
             raise SafetyError(f"instruction {instr[:2]} is not in the HP-GL/1 cutter subset",
                               source=f"instruction {n}")
-    return text
 
 
 def _num(v: float) -> str:

@@ -90,6 +90,14 @@ class MachineProfile:
     hpgl_velocity: float = 20.0           # cm/s
     hpgl_force: float = 80.0              # g
     overcut: float = 0.0                  # mm cut past the start of a closed contour
+    # drag knife (post/drag_knife.py): the blade tip trails the swivel axis
+    blade_offset: float = 0.0             # mm, tip behind the axis (0 = no compensation)
+    swivel_angle: float = 10.0            # degrees; sharper corners get a swivel arc
+    # more tools (post/tools.py): pen, punch, crease, notch tool, scribe, ...
+    tools: List[Dict[str, Any]] = field(default_factory=list)   # tool declarations
+    tool_map: Dict[str, str] = field(default_factory=dict)      # role -> tool name
+    tool_select: List[str] = field(default_factory=list)        # lines selecting the main tool
+    notch_length: float = 3.0             # mm, a notch cut by the knife: slit length
     source: str = ""                      # file the profile came from
 
     # ---------------------------------------------------------------- helpers
@@ -198,6 +206,12 @@ def profile_from_dict(data: Dict[str, Any], source: str = "") -> MachineProfile:
             continue                      # free-form notes inside the file
         if key not in _FIELDS:
             raise InputError(f"unknown field {key!r}", source=source)
+        if key in ("tools", "tool_map"):      # checked by post/tools.py in _validate
+            if not isinstance(value, list if key == "tools" else dict):
+                raise InputError(f"field {key!r} has the wrong kind of value: {value!r}",
+                                 source=source)
+            kwargs[key] = value
+            continue
         default = _FIELDS[key].default
         if default is dataclasses.MISSING:
             default = None
@@ -282,6 +296,17 @@ def _validate(p: MachineProfile, source: str) -> None:
     for key in ("settle_dwell", "pierce_delay", "cooling_delay", "overcut"):
         if getattr(p, key) < 0:
             fail(f"{key} must not be negative")
+    if p.blade_offset < 0:
+        fail("blade_offset must not be negative (mm)")
+    if p.blade_offset > 0 and p.tool != "drag_knife":
+        why = {"tangential_knife": " (its blade is turned by the rotary axis, so there is no "
+                                   "trailing offset)"}.get(p.tool, "")
+        fail(f"blade_offset is for a drag knife: this profile's tool is {p.tool}{why}; "
+             "set blade_offset to 0 or tool to drag_knife")
+    if not 0.0 <= p.swivel_angle <= 180.0:
+        fail("swivel_angle must lie in [0, 180] degrees")
+    from .tools import validate_profile
+    validate_profile(p, source)
     if p.sync_every_segment and not p.is_gcode:
         fail(f"sync_every_segment needs a G-code dialect (G4 P0); {p.dialect} has no "
              "synchronising command")

@@ -26,8 +26,11 @@ def _path_d(pts: Sequence[Point], closed: bool) -> str:
     return f"M {body}{' Z' if closed else ''}"
 
 
-def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "") -> str:
-    """Return the SVG document text for ``plan`` (and the filled ``parts``)."""
+def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "",
+           tools: Sequence[Tuple[str, str, list, list]] = ()) -> str:
+    """Return the SVG document text for ``plan`` (and the filled ``parts``).
+    ``tools``: (name, colour, items, points) of the further tools of a
+    multi-tool job, drawn in their own colour (lines, strikes as rings)."""
     parts = list(parts)
     all_pts: List[Point] = [plan.home]
     for it in plan.items:
@@ -67,6 +70,12 @@ def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "") -> str:
             out.append(f'<path class="{it.kind}" data-contour="{escape(it.contour_id)}" '
                        f'stroke="{colour}" d="{_path_d(path_points(body, 0.05), False)}"/>')
     out.append("</g>")
+    for name, colour, items, points in tools:
+        out.append(f'<g id="tool-{escape(name)}" class="tool" fill="none" stroke="{colour}" '
+                   f'stroke-width="{stroke:.3f}">')
+        out += [f'<path d="{_path_d(path_points(it.segments, 0.05), False)}"/>' for it in items]
+        out += [f'<circle cx="{x:.3f}" cy="{-y:.3f}" r="{2 * stroke:.3f}"/>' for x, y in points]
+        out.append("</g>")
     out.append(f'<g id="order" font-family="sans-serif" font-size="{font:.3f}">')
     for n, it in enumerate(plan.items, start=1):
         x, y = it.start

@@ -30,6 +30,7 @@ from typing import List, Optional, Tuple
 
 from ..core.geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment, dist, turn_angle
 from ..core.model import CutItem, CutPlan
+from . import drag_knife
 from .profiles import MachineProfile
 
 #: Longest arc piece (degrees of sweep) a tangential knife gets in one move.
@@ -139,6 +140,7 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
     oc = profile.overcut if overcut is None else overcut
     here: Point = plan.home
     heading: Optional[float] = None
+    blade: Optional[float] = drag_knife.START_DIRECTION   # drag-knife blade heading
 
     def add(kind: str, **kw) -> Move:
         m = Move(kind, start=here, **kw)
@@ -161,6 +163,11 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         work: List[Tuple[Segment, str, bool]] = [
             (s, ids[j], j in lift_before) for j, s in enumerate(segs)]
         work += [(s, ids[-1], False) for s in extra]
+        if profile.blade_offset > 0:       # drag knife: the axis path that makes the tip cut `work`
+            pieces, blade = drag_knife.compensate([w[0] for w in work], profile.blade_offset,
+                                                  profile.swivel_angle, blade,
+                                                  drag_knife.swivel_tolerance(profile))
+            work = [(s, work[k][1], False) for s, k in pieces]
         if not work:
             continue
         first_pieces = _pieces(work[0][0], profile)

@@ -313,12 +313,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="83"/>
-        <source>Copied to {0}; edit it with any text editor.</source>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="116"/>
+        <source>Copied to {0}; edit it here (Save edits) or with any text editor.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="74"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="107"/>
         <source>Copy profile</source>
         <translation type="unfinished"></translation>
     </message>
@@ -328,7 +328,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="457"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="469"/>
         <source>Cut path</source>
         <translation type="unfinished"></translation>
     </message>
@@ -438,7 +438,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="81"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="104"/>
         <source>LeatherCut: the cut path is out of date; plan the path again first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -468,13 +468,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="75"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="108"/>
         <source>Name of the copy:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../LeatherCutWorkbench/commands/manual_nest.py" line="91"/>
         <source>No collisions.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="84"/>
+        <source>Not valid JSON: {0} at line {1}; not saved.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -533,6 +538,11 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="91"/>
+        <source>Saved {0}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="24"/>
         <source>Saving vs drawing order</source>
         <translation type="unfinished"></translation>
@@ -548,6 +558,11 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="74"/>
+        <source>Shipped profiles are read-only: copy this one to the user folder to edit it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="257"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
@@ -558,7 +573,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="63"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="621"/>
+        <source>Tool paths</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="625"/>
+        <source>Tool {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="58"/>
+        <source>Tools: {0}. Roles: {1}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="86"/>
         <source>Wrote {0} ({1} lines).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -568,7 +598,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="113"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="133"/>
         <source>cutting {0} of {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -583,7 +613,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="114"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="135"/>
         <source>idle move (knife up)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -593,12 +623,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="422"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="434"/>
         <source>over-recognised</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="45"/>
         <source>shipped</source>
         <translation type="unfinished"></translation>
     </message>
@@ -613,7 +643,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="115"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="136"/>
         <source>t = {0:.1f} s of {1:.1f} s – {2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -623,12 +653,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="423"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="435"/>
         <source>under-recognised</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="41"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="45"/>
         <source>user</source>
         <translation type="unfinished"></translation>
     </message>
@@ -663,13 +693,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="67"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="100"/>
         <source>{0} uses {1}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="131"/>
+        <source>{0}: {1} of {2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="239"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="88"/>
+        <source>{0}; not saved.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -783,12 +823,12 @@
 <context>
     <name>LeatherCut_MachineProfiles</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="96"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="129"/>
         <source>Browse machine profiles (table, speeds, knife, I/O), choose the job's machine or copy a profile to edit it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="95"/>
+        <location filename="../../LeatherCutWorkbench/commands/machine_profiles.py" line="128"/>
         <source>Machine profiles…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -822,12 +862,12 @@
 <context>
     <name>LeatherCut_PostProcess</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="69"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="92"/>
         <source>Post-process…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="70"/>
+        <location filename="../../LeatherCutWorkbench/commands/post_process.py" line="93"/>
         <source>Write the planned job as a machine file (G-code, HPGL or DXF) for a machine profile; moves outside the table or unsafe feeds are refused</source>
         <translation type="unfinished"></translation>
     </message>
@@ -874,18 +914,22 @@
 <context>
     <name>LeatherCut_Simulate</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="158"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="179"/>
         <source>Animate the knife along the planned cut path at the machine's speeds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="157"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="178"/>
         <source>Simulate</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>MachineProfiles</name>
+    <message>
+        <source>Check the edited profile (every field, e.g. blade_offset, tools, tool_map) and save it; user profiles only</source>
+        <translation type="unfinished"></translation>
+    </message>
     <message>
         <source>Copy to user folder…</source>
         <translation type="unfinished"></translation>
@@ -896,6 +940,10 @@
     </message>
     <message>
         <source>Open user folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Save edits</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1084,6 +1132,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Tool map</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Write now</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1097,6 +1149,10 @@
     </message>
     <message>
         <source>hpgl</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>role=tool, e.g. stitch=pen,drill=punch4 (on top of the profile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>

@@ -167,9 +167,40 @@ def steps():
 
     p = command_panel("LeatherCut_MachineProfiles")
     check("profiles listed", p.list.count() >= 5, p.list.count())
+    details = p.details.toPlainText()
+    check("profile shows the drag-knife and tool fields",
+          all(f'"{k}"' in details for k in ("blade_offset", "swivel_angle", "tools", "tool_map",
+                                            "tool_select", "notch_length")), details[-300:])
+    # edit a user copy: the editor checks every field like a profile file
+    import json
+    copied = p.copy()
+    names = [e["name"] for e in p.entries]
+    p.list.setCurrentRow(names.index(os.path.splitext(os.path.basename(copied))[0]))
+    data = json.loads(p.details.toPlainText())
+    p.details.setPlainText(json.dumps(dict(data, blade_offset=0.3)))
+    check("editor refuses a blade offset on a tangential knife",
+          p.save() == "" and "blade_offset" in p.status.text(), p.status.text())
+    p.details.setPlainText(json.dumps(dict(data, tool_map={"stitch": "pen"})))
+    check("editor refuses a role mapped to a missing tool",
+          p.save() == "" and "tool_map" in p.status.text(), p.status.text())
+    pen = [{"name": "pen", "kind": "pen", "select": ["M0"], "offset": [-30, 0]}]
+    p.details.setPlainText(json.dumps(dict(data, tools=pen, tool_map={"stitch": "pen"},
+                                           swivel_angle=12.0)))
+    saved = p.save()
+    from LeatherCutWorkbench.post.profiles import load_profile as _load
+    check("editor saves the new fields", bool(saved) and _load(saved).tool_map == {"stitch": "pen"}
+          and _load(saved).tools[0]["offset"] == [-30, 0], p.status.text())
     p.reject()
 
     p = command_panel("LeatherCut_PostProcess")
+    tools_label = p.form.findChild(QtGui.QLabel, "toolMapLabel")
+    check("post panel shows the tool map", "knife" in tools_label.text(), tools_label.text())
+    p.set_widget("PostToolMap", "stitch=pen")
+    p.show_tools()
+    check("a tool the machine lacks is named", "'pen'" in tools_label.text()
+          and "PostToolMap" in tools_label.text(), tools_label.text())
+    p.set_widget("PostToolMap", "")
+    p.show_tools()
     out_nc = os.path.join(OUT, "job.nc")
     p.set_widget("PostOutputFile", out_nc)
     check("post accepted", p.accept())

@@ -32,6 +32,7 @@ from .leadins import Chain, assign_lead_outs, classify
 from .loops import Loop, mark_shared
 from .nesting_depth import LoopIndex, depths, innermost, parents
 from .options import RecogniseOptions
+from .part_lines import place_lines
 from .unfold import unfold_part
 
 
@@ -137,6 +138,7 @@ def _emit(drawing: Drawing, grp: Group, options: RecogniseOptions, ids: _Ids,
     node_loops = _attach_chains(grp, options, ids, rec, part_of_loop, layer)
     _under_flags(grp, options, ids, rec, node_loops)
     _place_marks(drawing, grp, loops, part_of_loop, depth, options.join_tol, rec)
+    place_lines(drawing, grp, loops, part_of_loop, depth, options, rec)
     line = getattr(grp.info, "mirror_line", None) if grp.info is not None else None
     if line is not None:
         _unfold(grp, line, part_of_loop, depth, options, ids, rec, drawing.path)

@@ -13,7 +13,7 @@ import math
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from ..geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment
-from ..model import Contour, Mark, Part
+from ..model import Contour, Mark, OpenChain, Part
 
 
 class Reflection:
@@ -81,4 +81,7 @@ def unfold_part(part: Part, line: Tuple[Point, Point], tol: float,
                                                               for s in h.segments)]
     part.marks = part.marks + [Mark(refl.point(m.position), m.kind, m.src) for m in part.marks
                                if refl.distance(m.position) > tol]
+    part.lines = part.lines + [OpenChain(ln.id + "m", refl.path(ln.segments), ln.layer)
+                               for ln in part.lines
+                               if not all(_on_line(s, refl, tol) for s in ln.segments)]
     return None
