@@ -110,12 +110,64 @@ def compound(edges: Sequence[Part.Shape]) -> Part.Shape:
 
 
 def contour_shape(contour: model.Contour) -> Part.Shape:
-    """A closed wire of the contour when its edges connect, else a compound."""
+    """A closed wire of the contour when its edges connect, else a compound.
+
+    Arc end points computed from centre and angles can miss the next segment's
+    start by ~1e-5 mm, more than OCC's 1e-7 mm confusion tolerance; such a loop
+    is rebuilt with the segments meeting at shared nodes (so it can be filled)."""
     edges = path_edges(contour.segments)
     try:
         return Part.Wire(edges)
     except Part.OCCError:
-        return compound(edges)
+        pass
+    try:
+        wire = Part.Wire(_closed_loop_edges(contour.segments))
+        if wire.isClosed():
+            return wire
+    except (Part.OCCError, ValueError):
+        pass
+    return compound(edges)
+
+
+#: largest end-to-start distance (mm) bridged by :func:`_closed_loop_edges`
+LOOP_SNAP_TOL = 1e-3
+
+
+def _closed_loop_edges(segments: Sequence[Segment]) -> List[Part.Edge]:
+    """Edges of a closed loop whose consecutive segments meet at one node each:
+    the node is the midpoint of one segment's end and the next one's start;
+    lines run between nodes, arcs pass through their own midpoint, flattened
+    curves keep their inner points.  Raises ValueError for a gap over
+    :data:`LOOP_SNAP_TOL`."""
+    segs = [s for s in segments if _seg_len(s) > _MIN_LEN]
+    n = len(segs)
+    nodes = []
+    for i in range(n):
+        a, b = segs[i].end, segs[(i + 1) % n].start
+        if math.dist(a, b) > LOOP_SNAP_TOL:
+            raise ValueError("gap in the loop")
+        nodes.append(((a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0))
+    out: List[Part.Edge] = []
+    for i, seg in enumerate(segs):
+        p0, p1 = nodes[i - 1], nodes[i]
+        if isinstance(seg, ArcSeg) and abs(seg.sweep) < 360.0 - 1e-9:
+            mid = math.radians(seg.start_angle + seg.sweep / 2.0)
+            pm = (seg.center[0] + seg.radius * math.cos(mid), seg.center[1] + seg.radius * math.sin(mid))
+            out.append(Part.Arc(_v(p0), _v(pm), _v(p1)).toShape())
+        elif isinstance(seg, CurveSeg):
+            pts = [p0] + list(seg.pts[1:-1]) + [p1]
+            out.extend(Part.makePolygon([_v(p) for p in pts]).Edges)
+        else:
+            out.append(Part.LineSegment(_v(p0), _v(p1)).toShape())
+    return out
+
+
+def _seg_len(seg: Segment) -> float:
+    if isinstance(seg, ArcSeg):
+        return abs(math.radians(seg.sweep)) * seg.radius
+    if isinstance(seg, CurveSeg):
+        return sum(math.dist(a, b) for a, b in zip(seg.pts, seg.pts[1:]))
+    return math.dist(seg.start, seg.end)
 
 
 def marker_points(points: Sequence[Point]) -> Part.Shape:
