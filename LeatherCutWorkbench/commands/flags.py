@@ -16,7 +16,7 @@ import FreeCADGui as Gui
 from PySide import QtGui
 
 from ..document import pipeline
-from . import base, panel, paths
+from . import base, panel
 
 translate = FreeCAD.Qt.translate
 
@@ -40,7 +40,7 @@ class FlagPanel(panel.CloseOnlyPanel):
         self.job = job
         self.kind = kind
         self.doc = job.Document
-        self.form = Gui.PySideUic.loadUi(paths.ui("Flags"))
+        self.form = panel.load_form("Flags")
         self.form.setWindowTitle(translate("LeatherCut", "Over-recognised contours" if kind == "over"
                                            else "Under-recognised contours"))
         self.flags = flags_of_kind(job, kind)

@@ -20,9 +20,19 @@ class ImportPanel(panel.StagePanel):
     TITLE = QT_TRANSLATE_NOOP("LeatherCut", "Import DXF")
     STAGE = "Import"
 
+    #: the panel made the document the job is in (closed again on Cancel)
+    made_document = False
+
     def after_run(self) -> None:
         base.focus_job(self.job)
         base.fit_view()
+
+    def reject(self):
+        doc = self.doc
+        closed = super().reject()
+        if closed and self.made_document and not doc.Objects:
+            FreeCAD.closeDocument(doc.Name)
+        return closed
 
     def show_result(self) -> None:
         drawing = objects.load_data(objects.stage_object(self.job, "Drawing"))
@@ -35,10 +45,14 @@ class ImportPanel(panel.StagePanel):
 def open_import_panel(path: str) -> ImportPanel:
     """Create a job for ``path`` (in the panel's transaction) and open the import panel."""
     panel.ensure_no_dialog()
+    made = FreeCAD.ActiveDocument is None
     doc = FreeCAD.ActiveDocument or FreeCAD.newDocument()
+    if made:
+        doc.UndoMode = 1
     doc.openTransaction("LeatherCut: Import DXF")
     job = pipeline.make_job(doc, os.path.splitext(os.path.basename(path))[0], path)
     p = ImportPanel(job, transaction_open=True)
+    p.made_document = made
     panel.show(p)
     return p
 

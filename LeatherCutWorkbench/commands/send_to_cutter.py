@@ -19,7 +19,7 @@ import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
 from ..core.errors import InputError, LeatherCutError
-from . import base, paths
+from . import base, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -147,7 +147,7 @@ class SendPanel:
 
     def __init__(self, job):
         self.job = job
-        self.form = Gui.PySideUic.loadUi(paths.ui("SendToCutter"))
+        self.form = panel.load_form("SendToCutter")
         self.port = self.form.findChild(QtGui.QLineEdit, "PostPort")
         self.port.setText(job.PostPort)
         self.check = self.form.findChild(QtGui.QCheckBox, "checkFirst")
@@ -277,7 +277,6 @@ class SendToCutter(base.Command):
         return job is not None and bool(job.PostLastOutput) and not Gui.Control.activeDialog()
 
     def run(self) -> None:
-        from . import panel
         panel.ensure_no_dialog()
         job = base.active_job()
         if job.PostFormat != "gcode":

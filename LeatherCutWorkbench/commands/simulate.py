@@ -13,7 +13,7 @@ from PySide import QtCore, QtGui
 
 from ..core.geometry import dist, path_points
 from ..document import objects, pipeline
-from . import base, paths
+from . import base, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -75,7 +75,7 @@ class SimulatePanel:
             pass
         self.timeline = Timeline(plan, cut, rapid)
         self.items = len(plan.items)
-        self.form = Gui.PySideUic.loadUi(paths.ui("Simulate"))
+        self.form = panel.load_form("Simulate")
         self.slider = self.form.findChild(QtGui.QSlider, "positionSlider")
         self.slider.setRange(0, 1000)
         self.speed = self.form.findChild(QtGui.QDoubleSpinBox, "speedFactor")
@@ -162,7 +162,6 @@ class Simulate(base.Command):
         return base.has_stage("CutPath") and not Gui.Control.activeDialog()
 
     def run(self) -> None:
-        from . import panel
         panel.ensure_no_dialog()
         panel.show(SimulatePanel(base.active_job()))
 
