@@ -1,62 +1,21 @@
 """*Simulate*: animate the knife along the planned path (cutting and idle moves)
-at the machine's speeds times a speed-up factor."""
+in the planner's estimated machine time (speeds, acceleration, knife lifts)
+times a speed-up factor."""
 
 from __future__ import annotations
 
-import bisect
 import time
-from typing import List, Tuple
 
 import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-from ..core.geometry import dist, path_points
 from ..document import objects, pipeline
 from . import base, panel
+from .timeline import timeline_of
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
-
-DEFAULT_CUT_FEED = 6000.0     # mm/min when no machine profile can be loaded
-DEFAULT_RAPID_FEED = 20000.0  # mm/min
-
-
-class Timeline:
-    """The knife's position over machine time (s) along the plan: idle moves at
-    the rapid feed, cuts at the cut feed (acceleration ignored)."""
-
-    def __init__(self, plan, cut_feed: float, rapid_feed: float):
-        self.points: List[Tuple[float, float]] = [plan.home]
-        self.times: List[float] = [0.0]
-        self.item_at: List[int] = [-1]
-        cut_v, rapid_v = cut_feed / 60.0, rapid_feed / 60.0
-        for i, it in enumerate(plan.items):
-            self._add(it.start, rapid_v, -1)
-            for p in path_points(it.segments, 0.1)[1:]:
-                self._add(p, cut_v, i)
-        self._add(plan.home, rapid_v, -1)
-
-    def _add(self, p, speed: float, item: int) -> None:
-        t = self.times[-1] + dist(self.points[-1], p) / max(speed, 1e-9)
-        self.points.append(p)
-        self.times.append(t)
-        self.item_at.append(item)
-
-    @property
-    def duration(self) -> float:
-        return self.times[-1]
-
-    def at(self, t: float):
-        """(position, item index or -1 when idle) at machine time ``t``."""
-        t = min(max(t, 0.0), self.duration)
-        k = max(1, bisect.bisect_left(self.times, t))
-        if k >= len(self.times):
-            return self.points[-1], -1
-        t0, t1 = self.times[k - 1], self.times[k]
-        f = 0.0 if t1 <= t0 else (t - t0) / (t1 - t0)
-        a, b = self.points[k - 1], self.points[k]
-        return (a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])), self.item_at[k]
 
 
 class SimulatePanel:
@@ -66,14 +25,7 @@ class SimulatePanel:
         self.job = job
         self.obj = objects.stage_object(job, "CutPath")
         plan = pipeline.stored_plan(job)
-        cut, rapid = DEFAULT_CUT_FEED, DEFAULT_RAPID_FEED
-        try:
-            from ..post.profiles import load_profile
-            prof = load_profile(job.PostMachine)
-            cut, rapid = prof.cut_feed, prof.rapid_feed
-        except Exception:  # no profile: the defaults give a plausible animation
-            pass
-        self.timeline = Timeline(plan, cut, rapid)
+        self.timeline = timeline_of(job)
         self.items = len(plan.items)
         self.form = panel.load_form("Simulate")
         self.slider = self.form.findChild(QtGui.QSlider, "positionSlider")
