@@ -601,8 +601,16 @@ POST_EXTENSIONS = {"gcode": ".nc", "hpgl": ".plt", "dxf": ".dxf"}
 
 
 def default_output(job) -> str:
-    base = os.path.splitext(job.SourceFile or job.Document.FileName or "job")[0] or "job"
-    return base + POST_EXTENSIONS.get(job.PostFormat, ".nc")
+    """Where Post-process writes when the job names no file: ``<job label>.<ext>``
+    in the user's output folder preference (``OutputFolder``), else beside the
+    saved document, else in the home folder -- never next to the source DXF
+    (often a read-only or shared folder)."""
+    folder = options.preferences().GetString("OutputFolder", "").strip()
+    if not folder:
+        saved = job.Document.FileName
+        folder = os.path.dirname(saved) if saved else os.path.expanduser("~")
+    stem = re.sub(r"[^\w.-]+", "_", job.Label).strip("._") or "job"
+    return os.path.join(os.path.expanduser(folder), stem + POST_EXTENSIONS.get(job.PostFormat, ".nc"))
 
 
 def _post_prepare(job):
