@@ -4,12 +4,14 @@ job (edges grouped by layer)."""
 from __future__ import annotations
 
 import os
+from typing import List, Tuple
 
 import FreeCAD
 import FreeCADGui as Gui
+from PySide import QtGui
 
 from ..document import objects, pipeline
-from . import base, panel
+from . import base, messages, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -36,10 +38,44 @@ class ImportPanel(panel.StagePanel):
 
     def show_result(self) -> None:
         drawing = objects.load_data(objects.stage_object(self.job, "Drawing"))
-        if drawing is not None:
-            layers = {e.src.layer for e in drawing.edges}
-            self.show_status(translate("LeatherCut", "{0} edges on {1} layers, {2} marks, units {3} ({4})").format(
-                len(drawing.edges), len(layers), len(drawing.marks), drawing.units, drawing.units_source))
+        if drawing is None:
+            return
+        layers = {e.src.layer for e in drawing.edges}
+        self.show_status(translate("LeatherCut", "{0} edges on {1} layers, {2} marks, units {3} ({4})").format(
+            len(drawing.edges), len(layers), len(drawing.marks), drawing.units, drawing.units_source))
+        box = self.form.findChild(QtGui.QListWidget, "findingsList")
+        box.clear()
+        for level, text in import_findings(drawing):
+            item = QtGui.QListWidgetItem(text)
+            if level == "warning":
+                item.setForeground(QtGui.QBrush(QtGui.QColor("#b45309")))
+            elif level == "error":
+                item.setForeground(QtGui.QBrush(QtGui.QColor("#c62828")))
+            box.addItem(item)
+
+
+def import_findings(drawing) -> List[Tuple[str, str]]:
+    """(level, text) lines for the panel: drawing size and units first, then
+    every finding of the import (recovered file, missing units, clean-up,
+    layers not cut, ...) worded for the GUI."""
+    size = drawing.stats.get("size_mm") if drawing.stats else None
+    out = []
+    if size:
+        out.append(("info", translate("LeatherCut", "Drawing size {0} × {1} mm, units {2} ({3})").format(
+            messages.readable_number(size[0]), messages.readable_number(size[1]),
+            drawing.units, translate("LeatherCut", UNIT_SOURCES.get(drawing.units_source, drawing.units_source)))))
+    if drawing.pieces:
+        out.append(("info", translate("LeatherCut", "{0} pattern pieces").format(len(drawing.pieces))))
+    for f in drawing.findings:
+        out.append((f.level, messages.for_gui(f.message)))
+    return out
+
+
+#: Drawing.units_source -> what the panel says
+UNIT_SOURCES = {"header": QT_TRANSLATE_NOOP("LeatherCut", "stated in the file"),
+                "aama-text": QT_TRANSLATE_NOOP("LeatherCut", "from the AAMA 'Units:' text"),
+                "option": QT_TRANSLATE_NOOP("LeatherCut", "chosen in this panel"),
+                "assumed": QT_TRANSLATE_NOOP("LeatherCut", "not stated: assumed")}
 
 
 def open_import_panel(path: str) -> ImportPanel:

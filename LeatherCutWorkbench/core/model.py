@@ -301,6 +301,7 @@ class Part:
     mirror_allowed: bool = False
     grade: int = 0
     parent_id: Optional[str] = None    # part whose hole this part lies in
+    size: str = ""                     # pattern size (AAMA / ASTM graded sets), "" otherwise
 
     @property
     def net_area(self) -> float:

@@ -27,7 +27,7 @@ import FreeCAD
 from ..core import geometry, model
 from ..core.errors import InputError, LeatherCutError
 from ..core.progress import ProgressFn
-from . import objects, options, shapes
+from . import objects, options, part_objects, shapes
 from .objects import translate
 
 #: stage key -> the core package that must exist for the stage's command
@@ -211,10 +211,13 @@ def _recognise_apply(job, rec: model.Recognition):
     # a person's decisions survive re-recognition when the same flag comes back
     kept = {(o.Kind, tuple(sorted(o.Ids))): o.Decision for o in flag_objects(job)
             if o.Decision != "Undecided"}
+    kept_parts = part_objects.current_choices(job)
     grp = objects.make_stage_group(job, objects.RecognitionProxy, "Recognition",
                                    translate("LeatherCut", "Recognition"))
     objects.store_data(grp, rec)
     build_recognition_view(grp, rec)
+    part_objects.build(grp, rec, kept_parts, lambda p: part_shape(p, False),
+                       part_objects.sample_size_of(job, rec))
     fgrp = job.Document.addObject("App::DocumentObjectGroup", "Flags")
     fgrp.Label = translate("LeatherCut", "Flags")
     grp.addObject(fgrp)
@@ -323,7 +326,7 @@ def effective_recognition(job) -> model.Recognition:
         _RERUN_CACHE[slot] = (key, out)
         return out
 
-    return apply_decisions(rec, decisions, recognise_again)
+    return part_objects.apply_to(job, apply_decisions(rec, decisions, recognise_again))
 
 
 #: (document, job) -> (key, recognition with the accepted fixes applied)
