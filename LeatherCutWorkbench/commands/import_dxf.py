@@ -33,7 +33,11 @@ class ImportPanel(panel.StagePanel):
         doc = self.doc
         closed = super().reject()
         if closed and self.made_document and not doc.Objects:
-            FreeCAD.closeDocument(doc.Name)
+            # once the task dialog is gone: FreeCAD closes the dialog of a document
+            # it closes, and would otherwise take the next panel with it
+            name = doc.Name
+            panel.later(self, lambda: FreeCAD.closeDocument(name)
+                        if name in FreeCAD.listDocuments() else None)
         return closed
 
     def show_result(self) -> None:
@@ -82,15 +86,30 @@ def open_import_panel(path: str) -> ImportPanel:
     """Create a job for ``path`` (in the panel's transaction) and open the import panel."""
     panel.ensure_no_dialog()
     made = FreeCAD.ActiveDocument is None
-    doc = FreeCAD.ActiveDocument or FreeCAD.newDocument()
-    if made:
-        doc.UndoMode = 1
+    stem = os.path.splitext(os.path.basename(path))[0]
+    doc = FreeCAD.ActiveDocument or FreeCAD.newDocument(fresh_document_name(stem))
     doc.openTransaction("LeatherCut: Import DXF")
     job = pipeline.make_job(doc, os.path.splitext(os.path.basename(path))[0], path)
     p = ImportPanel(job, transaction_open=True)
     p.made_document = made
     panel.show(p)
     return p
+
+
+_names_used = set()
+
+
+def fresh_document_name(stem: str) -> str:
+    """A document name not used before in this session (FreeCAD matches task
+    dialogs to documents by name, so a closed document's name is not reused)."""
+    clean = "".join(ch if ch.isalnum() else "_" for ch in stem) or "Job"
+    clean = clean if not clean[0].isdigit() else "_" + clean
+    name, n = clean, 1
+    while name in _names_used or name in FreeCAD.listDocuments():
+        n += 1
+        name = f"{clean}{n}"
+    _names_used.add(name)
+    return name
 
 
 class ImportDXF(base.Command):

@@ -292,6 +292,35 @@ def show(panel) -> None:
     global CURRENT
     Gui.Control.showDialog(panel)
     CURRENT = panel
+    if getattr(panel, "form", None) is not None:
+        # the task box unfolds over a few hundred ms: fit again while it does
+        later(panel, lambda: fit_panel(panel), times=12, interval_ms=150)
+
+
+def fit_panel(panel) -> None:
+    """Fit an open panel's form to the task view (nothing once it is closed)."""
+    if Gui.Control.activeDialog() and CURRENT is panel:
+        panel_layout.fit_to_task_view(panel.form)
+
+
+def later(owner, fn, times: int = 1, interval_ms: int = 0) -> None:
+    """Call ``fn`` ``times`` times, every ``interval_ms``, from the event loop.
+    The timer is kept on ``owner``."""
+    from PySide import QtCore
+    timer = QtCore.QTimer()
+    timer.setInterval(interval_ms)
+    left = [times]
+
+    def tick():
+        left[0] -= 1
+        if left[0] <= 0:
+            timer.stop()
+            owner._later_timer = None   # let go of fn (and what it holds)
+        fn()
+
+    timer.timeout.connect(tick)
+    owner._later_timer = timer
+    timer.start()
 
 
 def ensure_no_dialog() -> None:
