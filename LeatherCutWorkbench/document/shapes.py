@@ -110,36 +110,40 @@ def compound(edges: Sequence[Part.Shape]) -> Part.Shape:
 
 
 def contour_shape(contour: model.Contour) -> Part.Shape:
-    """A closed wire of the contour when its edges connect, else a compound.
+    """A closed wire of the contour (so it can be filled), else a compound of
+    its edges.
 
-    Arc end points computed from centre and angles can miss the next segment's
-    start by ~1e-5 mm, more than OCC's 1e-7 mm confusion tolerance; such a loop
-    is rebuilt with the segments meeting at shared nodes (so it can be filled)."""
-    edges = path_edges(contour.segments)
-    try:
-        return Part.Wire(edges)
-    except Part.OCCError:
-        pass
+    Arc end points computed from centre and angles miss the next segment's
+    start by up to ~1e-5 mm, more than OCC's 1e-7 mm confusion tolerance, and
+    a wire joined across such gaps can give an invalid face; so the loop is
+    built with consecutive segments meeting at one shared node each."""
     try:
         wire = Part.Wire(_closed_loop_edges(contour.segments))
         if wire.isClosed():
             return wire
     except (Part.OCCError, ValueError):
         pass
-    return compound(edges)
+    edges = path_edges(contour.segments)
+    try:
+        return Part.Wire(edges)
+    except Part.OCCError:
+        return compound(edges)
 
 
 #: largest end-to-start distance (mm) bridged by :func:`_closed_loop_edges`
-LOOP_SNAP_TOL = 1e-3
+#: (recognition joins within its join tolerance, 0.01 mm by default)
+LOOP_SNAP_TOL = 0.01
 
 
 def _closed_loop_edges(segments: Sequence[Segment]) -> List[Part.Edge]:
     """Edges of a closed loop whose consecutive segments meet at one node each:
     the node is the midpoint of one segment's end and the next one's start;
     lines run between nodes, arcs pass through their own midpoint, flattened
-    curves keep their inner points.  Raises ValueError for a gap over
-    :data:`LOOP_SNAP_TOL`."""
+    curves keep their inner points, a lone full circle stays a circle.
+    Raises ValueError for a gap over :data:`LOOP_SNAP_TOL`."""
     segs = [s for s in segments if _seg_len(s) > _MIN_LEN]
+    if len(segs) == 1 and isinstance(segs[0], ArcSeg) and abs(segs[0].sweep) >= 360.0 - 1e-9:
+        return segment_edges(segs[0])
     n = len(segs)
     nodes = []
     for i in range(n):
@@ -150,13 +154,16 @@ def _closed_loop_edges(segments: Sequence[Segment]) -> List[Part.Edge]:
     out: List[Part.Edge] = []
     for i, seg in enumerate(segs):
         p0, p1 = nodes[i - 1], nodes[i]
-        if isinstance(seg, ArcSeg) and abs(seg.sweep) < 360.0 - 1e-9:
+        if math.dist(p0, p1) <= _MIN_LEN:
+            continue            # shorter than OCC can represent: the nodes coincide
+        if isinstance(seg, ArcSeg):
             mid = math.radians(seg.start_angle + seg.sweep / 2.0)
             pm = (seg.center[0] + seg.radius * math.cos(mid), seg.center[1] + seg.radius * math.sin(mid))
             out.append(Part.Arc(_v(p0), _v(pm), _v(p1)).toShape())
         elif isinstance(seg, CurveSeg):
-            pts = [p0] + list(seg.pts[1:-1]) + [p1]
-            out.extend(Part.makePolygon([_v(p) for p in pts]).Edges)
+            inner = [p for p in seg.pts[1:-1]
+                     if math.dist(p, p0) > _MIN_LEN and math.dist(p, p1) > _MIN_LEN]
+            out.extend(Part.makePolygon([_v(p) for p in [p0] + inner + [p1]]).Edges)
         else:
             out.append(Part.LineSegment(_v(p0), _v(p1)).toShape())
     return out
