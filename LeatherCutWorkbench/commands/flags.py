@@ -213,7 +213,7 @@ def gap_box(job, flag_obj):
     return None
 
 
-def zoom_view_to(box, min_size: float = 6.0) -> bool:
+def zoom_view_to(box, min_size: float = 15.0) -> bool:
     """Top view centred on ``box`` (mm), showing about ten times its size."""
     view = Gui.ActiveDocument.ActiveView
     if not hasattr(view, "getCameraNode"):

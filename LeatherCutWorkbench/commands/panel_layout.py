@@ -18,7 +18,9 @@ MAX_OPTIONS_HEIGHT = 560
 #: the options part keeps at least this height (px)
 MIN_OPTIONS_HEIGHT = 80
 #: lines of status text kept visible below the options
-STATUS_LINES = 5
+STATUS_LINES = 3
+#: px between the panel's last widget and the combo view's bottom (task box frame)
+BOTTOM_MARGIN = 24
 
 
 def scrolling(form: QtGui.QWidget) -> QtGui.QWidget:
@@ -30,6 +32,8 @@ def scrolling(form: QtGui.QWidget) -> QtGui.QWidget:
     if status is not None:
         status.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
         status.setMinimumWidth(50)
+    for lay in form.findChildren(QtGui.QFormLayout):  # labels above fields when narrow
+        lay.setRowWrapPolicy(QtGui.QFormLayout.WrapLongRows)
     for combo in form.findChildren(QtGui.QComboBox):
         combo.setSizeAdjustPolicy(QtGui.QComboBox.AdjustToMinimumContentsLengthWithIcon)
         combo.setMinimumContentsLength(8)
@@ -44,22 +48,39 @@ def scrolling(form: QtGui.QWidget) -> QtGui.QWidget:
 
 
 def fit_to_task_view(form: QtGui.QWidget) -> None:
-    """Cap the options' height of a shown panel so the whole panel -- progress
-    bar and status included -- fits the task view's visible height.
+    """Set the options' height of a shown panel so the whole panel -- progress
+    bar and status (up to :data:`STATUS_LINES` lines) included -- ends above
+    the bottom of the combo view (or, with the combo view undocked or renamed,
+    is not clipped by the task view).
 
-    What is hidden is read from the form's own visible region: asking Qt for
-    FreeCAD's task view widgets (``parentWidget()``) from Python gets them
-    deleted when the Python wrappers go (FreeCAD 0.20, PySide2 5.15)."""
+    The task view's own widgets are not asked for: getting them from Python
+    (``parentWidget()``) gets them deleted when the wrappers go (FreeCAD 0.20,
+    PySide2 5.15)."""
     area = form.findChild(QtGui.QScrollArea, "optionsScrollArea")
-    if area is None or not form.isVisible():
+    if area is None or area.widget() is None or not form.isVisible():
         return
-    visible = form.visibleRegion().boundingRect()
-    if visible.isEmpty():
-        return
-    hidden = form.height() - (visible.y() + visible.height())
-    status = form.findChild(QtGui.QLabel, "statusLabel")
-    if status is not None:  # room for a status of up to STATUS_LINES lines
-        hidden += max(0, STATUS_LINES * status.fontMetrics().lineSpacing() - status.height())
-    if hidden > 0:
-        area.setMaximumHeight(max(MIN_OPTIONS_HEIGHT, area.height() - hidden - 8))
-        area.setMinimumHeight(min(area.maximumHeight(), MIN_OPTIONS_HEIGHT))
+    hint = area.widget().sizeHint().height() + 4
+    if area.horizontalScrollBar().isVisible():
+        hint += area.horizontalScrollBar().height()
+    below = 0
+    for name in ("progressBar", "statusLabel"):
+        w = form.findChild(QtGui.QWidget, name)
+        if w is None:
+            continue
+        if isinstance(w, QtGui.QLabel):   # wrapped text: its height at its width
+            needed = max(w.heightForWidth(max(w.width(), 100)), w.fontMetrics().lineSpacing())
+            below += max(needed, STATUS_LINES * w.fontMetrics().lineSpacing()) + 6
+        else:
+            below += w.sizeHint().height() + 6
+    import FreeCADGui as Gui
+    dock = Gui.getMainWindow().findChild(QtGui.QDockWidget, "Combo View")
+    if dock is not None and dock.isVisible() and not dock.isFloating():
+        bottom = dock.mapToGlobal(QtCore.QPoint(0, dock.height())).y()
+        room = bottom - area.mapToGlobal(QtCore.QPoint(0, 0)).y() - below - BOTTOM_MARGIN
+    else:
+        visible = form.visibleRegion().boundingRect()
+        hidden = form.height() - (visible.y() + visible.height()) if not visible.isEmpty() else 0
+        room = area.height() - max(hidden, 0)
+    height = max(MIN_OPTIONS_HEIGHT, min(hint, MAX_OPTIONS_HEIGHT, room))
+    area.setMaximumHeight(height)
+    area.setMinimumHeight(height)

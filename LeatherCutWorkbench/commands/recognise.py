@@ -35,6 +35,9 @@ class RecognisePanel(panel.StagePanel):
         self.table.horizontalHeader().setStretchLastSection(False)
         self.table.horizontalHeader().setSectionResizeMode(0, QtGui.QHeaderView.Stretch)
         self.table.verticalHeader().hide()
+        for w in (self.table, self.sizes):   # never widen the panel: scroll inside
+            w.setSizePolicy(QtGui.QSizePolicy.Ignored, QtGui.QSizePolicy.Preferred)
+            w.setMinimumWidth(120)
         self.table.itemChanged.connect(self._table_changed)
         self.sizes.itemChanged.connect(self._size_changed)
         self._filling = False

@@ -172,7 +172,7 @@ def steps():
     check("under flag label readable", re.match(r"F\d+: gap 0\.30 mm at .+ – undecided$", label), label)
     check("gap length shown", "Gap: 0.300 mm" in p.reason.text(), p.reason.text())
     cam = Gui.ActiveDocument.ActiveView.getCameraNode()
-    check("zoomed to the gap", p.zoom() and cam.height.getValue() < 10.0, cam.height.getValue())
+    check("zoomed to the gap", p.zoom() and cam.height.getValue() < 20.0, cam.height.getValue())
     p.decide("Accept")
     check("list shows the decision", "fix accepted" in p.list.item(0).text(), p.list.item(0).text())
     doc.undo()
