@@ -20,18 +20,11 @@ from LeatherCutWorkbench.document import importer, objects, part_objects, pipeli
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gui.sample import write_sample  # noqa: E402
+import test_document_job  # noqa: E402
+
+doc = test_document_job.doc     # the same document fixture (undo on, closed after)
 
 CLI_OPTION = re.compile(r"(?<![\w-])--[a-z]")
-
-
-@pytest.fixture
-def doc():
-    d = FreeCAD.newDocument("LCReview")
-    d.UndoMode = 1
-    name = d.Name
-    yield d
-    if name in FreeCAD.listDocuments():
-        FreeCAD.closeDocument(name)
 
 
 def _job(doc, path, *stages):
