@@ -147,3 +147,10 @@ def test_graded_aama_set_cuts_one_size_by_default(doc, samples_dir):
     assert len(pipeline.effective_recognition(job).active_parts()) == 10
     part_objects.set_included(by_size["42"], True)
     assert len(pipeline.effective_recognition(job).active_parts()) == 20
+
+
+def test_parts_drawn_in_blocks_are_named_by_their_block(doc, samples_dir):
+    job = _job(doc, os.path.join(samples_dir, "dxf2gcode_Bogen_Ellipsen_Polylinien_Block.dxf"),
+               "Import", "Recognise")
+    labels = [o.Label for o in part_objects.part_objects(job)]
+    assert labels and all(re.fullmatch(r"block Block_\d+ \(P\d+\)", t) for t in labels), labels

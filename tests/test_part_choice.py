@@ -2,7 +2,7 @@
 
 from LeatherCutWorkbench.core.geometry import LineSeg
 from LeatherCutWorkbench.core.model import Contour, Part, Recognition
-from LeatherCutWorkbench.core.part_choice import (PartChoice, apply_choices, default_choices,
+from LeatherCutWorkbench.core.part_choice import (PartChoice, apply_choices, block_names, default_choices,
                                                   display_name, sizes)
 
 
@@ -52,3 +52,15 @@ def test_display_names_come_from_the_drawing():
     assert display_name(_square("P3", "42", "BACK size 42")) == "BACK size 42 (P3)"
     assert display_name(_square("P7", layer="LEATHER")) == "layer LEATHER (P7)"
     assert display_name(_square("P8", layer="")) == "P8"
+
+
+def test_block_names_from_the_edges_on_the_outline():
+    from LeatherCutWorkbench.core.model import Drawing, EdgeSource, LineEdge
+    parts = [_square("P1"), _square("P2", x=20), _square("P3", name="BACK size 42", x=40)]
+    edges = [LineEdge((0.0, 0.0), (10.0, 0.0), EdgeSource(block="SHEET/FRONT")),
+             LineEdge((10.0, 0.0), (10.0, 10.0), EdgeSource(block="SHEET/FRONT")),
+             LineEdge((20.0, 0.0), (30.0, 0.0), EdgeSource()),           # not from a block
+             LineEdge((40.0, 0.0), (50.0, 0.0), EdgeSource(block="BACK"))]
+    names = block_names(Drawing("x.dxf", edges=edges), parts)
+    assert names == {"P1": "FRONT"}        # P2 drawn in model space, P3 has its AAMA name
+    assert display_name(parts[0], names["P1"]) == "block FRONT (P1)"

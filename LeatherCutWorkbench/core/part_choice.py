@@ -29,14 +29,57 @@ class PartChoice:
     quantity: int = 1
 
 
-def display_name(part: Part) -> str:
-    """What a person calls the part: its drawing name (AAMA piece and size, block
-    name) or its layer, with the part id: ``"BACK size 42 (P3)"``, ``"layer CUT (P7)"``."""
+def display_name(part: Part, block: str = "") -> str:
+    """What a person calls the part: its drawing name (AAMA piece and size), the
+    block it was drawn in, or its layer, with the part id: ``"BACK size 42 (P3)"``,
+    ``"block FRONT (P5)"``, ``"layer CUT (P7)"``."""
     if part.name:
         return f"{part.name} ({part.id})"
+    if block:
+        return f"block {block} ({part.id})"
     if part.outer.layer:
         return f"layer {part.outer.layer} ({part.id})"
     return part.id
+
+
+def block_names(drawing: Drawing, parts: Sequence[Part], tol: float = 0.05) -> Dict[str, str]:
+    """Part id -> name of the block its outline was drawn in, for parts without
+    a drawing name whose outline edges come from a block INSERT (the block that
+    holds the geometry: the last of a nested ``A/B/C`` path).  An edge belongs
+    to a part when its start point lies within ``tol`` mm of the part's outline;
+    the block most of those edges come from wins."""
+    from collections import Counter
+    from shapely.geometry import LineString, Point as SPoint
+    from shapely.strtree import STRtree
+
+    todo = [p for p in parts if not p.name]
+    starts = [(_edge_start(e), e.src.block.split("/")[-1]) for e in drawing.edges
+              if e.src.block and e.src.role == "cut"]
+    starts = [(pt, b) for pt, b in starts if pt is not None]
+    if not todo or not starts:
+        return {}
+    rings = [LineString(list(p.outer.points()) + [p.outer.points()[0]]) for p in todo]
+    tree = STRtree(rings)
+    votes: Dict[int, Counter] = {}
+    for pt, block in starts:
+        q = SPoint(pt)
+        for k in tree.query(q.buffer(tol)):
+            k = int(k)
+            if rings[k].distance(q) <= tol:
+                votes.setdefault(k, Counter())[block] += 1
+    return {todo[k].id: c.most_common(1)[0][0] for k, c in votes.items()}
+
+
+def _edge_start(edge):
+    """A point on a drawing edge (mm): its start, or None for an unknown kind."""
+    import math
+    if hasattr(edge, "start"):
+        return tuple(edge.start)
+    if hasattr(edge, "radius"):
+        a = math.radians(edge.start_angle)
+        return (edge.center[0] + edge.radius * math.cos(a), edge.center[1] + edge.radius * math.sin(a))
+    poles = getattr(edge, "poles", None)
+    return tuple(poles[0]) if poles else None
 
 
 def sizes(parts: Iterable[Part]) -> List[str]:

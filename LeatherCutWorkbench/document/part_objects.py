@@ -13,7 +13,8 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 import FreeCAD
 
 from ..core import model
-from ..core.part_choice import PartChoice, apply_choices, default_choices, display_name
+from ..core.part_choice import (PartChoice, apply_choices, block_names, default_choices, display_name,
+                                sample_size, sizes)
 from . import objects
 from .objects import translate
 
@@ -43,9 +44,11 @@ def apply_to(job, rec: model.Recognition) -> model.Recognition:
 
 
 def build(grp, rec: model.Recognition, kept: Kept, shape_of: Callable[[model.Part], Any],
-          sample: str = "") -> Optional[Any]:
+          drawing: Optional[model.Drawing] = None) -> Optional[Any]:
     """The *Parts* group in the recognition group ``grp``: one object per part
-    that recognition did not exclude (excluded regions are the flags' business)."""
+    that recognition did not exclude (excluded regions are the flags' business).
+    ``drawing`` (the imported drawing) gives the graded set's sample size and the
+    block names of parts drawn in blocks."""
     parts = [p for p in rec.parts if not p.excluded]
     if not parts:
         return None
@@ -53,6 +56,8 @@ def build(grp, rec: model.Recognition, kept: Kept, shape_of: Callable[[model.Par
     pgrp = doc.addObject("App::DocumentObjectGroup", "Parts")
     pgrp.Label = translate("LeatherCut", "Parts")
     grp.addObject(pgrp)
+    sample = sample_size(drawing) if drawing is not None and len(sizes(parts)) > 1 else ""
+    blocks = block_names(drawing, parts) if drawing is not None else {}
     defaults = default_choices(parts, sample)
     for p in parts:
         choice = kept.get((p.id, p.name), defaults[p.id])
@@ -63,7 +68,7 @@ def build(grp, rec: model.Recognition, kept: Kept, shape_of: Callable[[model.Par
         obj.Shape = shape_of(p)
         obj.Include = choice.include
         obj.Quantity = max(1, choice.quantity)
-        obj.Label = display_name(p)
+        obj.Label = display_name(p, blocks.get(p.id, ""))
         pgrp.addObject(obj)
         if FreeCAD.GuiUp:
             from . import style, viewproviders
@@ -86,12 +91,3 @@ def by_size(job) -> Dict[str, List[Any]]:
         out.setdefault(o.Size, []).append(o)
     return out
 
-
-def sample_size_of(job, rec: model.Recognition) -> str:
-    """The drawing's sample size when the parts come in several sizes ("" else;
-    the stored drawing is only read for graded sets)."""
-    from ..core.part_choice import sample_size, sizes
-    if len(sizes(rec.parts)) < 2:
-        return ""
-    drawing = objects.load_data(objects.stage_object(job, "Drawing"))
-    return sample_size(drawing) if drawing is not None else ""

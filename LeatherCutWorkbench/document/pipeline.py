@@ -217,7 +217,7 @@ def _recognise_apply(job, rec: model.Recognition):
     objects.store_data(grp, rec)
     build_recognition_view(grp, rec)
     part_objects.build(grp, rec, kept_parts, lambda p: part_shape(p, False),
-                       part_objects.sample_size_of(job, rec))
+                       objects.load_data(objects.stage_object(job, "Drawing")))
     fgrp = job.Document.addObject("App::DocumentObjectGroup", "Flags")
     fgrp.Label = translate("LeatherCut", "Flags")
     grp.addObject(fgrp)
