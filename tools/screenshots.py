@@ -109,6 +109,9 @@ def in_freecad() -> None:
             doc = FreeCAD.ActiveDocument
             job = objects.jobs(doc)[-1]
             fit()
+            area = p.form.findChild(QtGui.QScrollArea, "optionsScrollArea")
+            area.ensureWidgetVisible(p.form.findChild(QtGui.QWidget, "findingsList"))
+            area.horizontalScrollBar().setValue(0)
             shot("01-import.png")
             p.accept()
 

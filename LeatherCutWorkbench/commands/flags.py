@@ -122,6 +122,9 @@ class FlagPanel(panel.CloseOnlyPanel):
 
     def follow_document(self) -> None:
         """Re-read the flags when the document changed under the panel (undo, redo)."""
+        if panel.CURRENT is not self or not Gui.Control.activeDialog():
+            self.timer.stop()        # closed some other way (document closed, ...)
+            return
         state = self._state()
         if state is None:
             self.reject()

@@ -46,7 +46,8 @@ class ImportPanel(panel.StagePanel):
             return
         layers = {e.src.layer for e in drawing.edges}
         self.show_status(translate("LeatherCut", "{0} edges on {1} layers, {2} marks, units {3} ({4})").format(
-            len(drawing.edges), len(layers), len(drawing.marks), drawing.units, drawing.units_source))
+            len(drawing.edges), len(layers), len(drawing.marks), drawing.units,
+            translate("LeatherCut", UNIT_SOURCES.get(drawing.units_source, drawing.units_source))))
         box = self.form.findChild(QtGui.QListWidget, "findingsList")
         box.clear()
         for level, text in import_findings(drawing):
