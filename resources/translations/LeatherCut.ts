@@ -372,7 +372,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="131"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="132"/>
         <source>DXF drawings (*.dxf *.DXF);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -387,7 +387,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="68"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="69"/>
         <source>Drawing size {0} × {1} mm, units {2} ({3})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -422,7 +422,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="154"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="157"/>
         <source>Gap: {0} mm. {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -542,7 +542,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/part_objects.py" line="54"/>
+        <location filename="../../LeatherCutWorkbench/document/part_objects.py" line="57"/>
         <source>Parts</source>
         <translation type="unfinished"></translation>
     </message>
@@ -637,7 +637,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="81"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="82"/>
         <source>chosen in this panel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -677,7 +677,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="80"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="81"/>
         <source>from the AAMA 'Units:' text</source>
         <translation type="unfinished"></translation>
     </message>
@@ -697,7 +697,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="82"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="83"/>
         <source>not stated: assumed</source>
         <translation type="unfinished"></translation>
     </message>
@@ -722,7 +722,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="79"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="80"/>
         <source>stated in the file</source>
         <translation type="unfinished"></translation>
     </message>
@@ -782,7 +782,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="72"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="73"/>
         <source>{0} pattern pieces</source>
         <translation type="unfinished"></translation>
     </message>
@@ -936,12 +936,12 @@
 <context>
     <name>LeatherCut_ImportDXF</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="118"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="119"/>
         <source>Import DXF…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="119"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="120"/>
         <source>Import a DXF drawing into a new LeatherCut job (edges grouped by layer)</source>
         <translation type="unfinished"></translation>
     </message>
