@@ -3,8 +3,8 @@
 
     .venv/bin/python tools/screenshots.py            # writes docs/img/*.png
 
-Starts the real FreeCAD GUI under Xvfb (1280x1024, isolated HOME, see
-tests/gui/freecad_gui.py) with this file as its macro.  Inside FreeCAD it
+Starts the real FreeCAD GUI under Xvfb (1280x800 with FreeCAD's default
+docks, isolated HOME, see tests/gui/freecad_gui.py) with this file as its macro.  Inside FreeCAD it
 builds a job from the generated sample drawing (tests/gui/sample.py: every
 contour kind and both flag kinds), runs each stage through its command and
 task panel and grabs the whole screen (X root window: the 3D view included)
@@ -31,6 +31,7 @@ SHOTS = [
     ("08-simulate.png", "Simulate: the knife (red cone) on its way along the path"),
     ("09-post-process.png", "Post-process: machine profile, format and output file"),
     ("10-send-to-cutter.png", "Send to cutter: streaming to a GRBL controller with journal and resume"),
+    ("11-aama-sizes.png", "Recognise on a graded AAMA set: parts named by piece and size, one size to cut"),
 ]
 
 
@@ -43,7 +44,8 @@ def launch() -> int:
         print(f"screenshots: {tool} is missing (run tools/setup.sh)", file=sys.stderr)
         return 2
     os.makedirs(IMG_DIR, exist_ok=True)
-    run = run_gui_script(os.path.abspath(__file__), {"LC_IMG_DIR": IMG_DIR}, timeout=300)
+    run = run_gui_script(os.path.abspath(__file__), {"LC_IMG_DIR": IMG_DIR}, timeout=300,
+                         size="1280x800x24")
     for line in run.log.splitlines():
         if line.startswith("SHOT") or "Traceback" in line or "Error" in line:
             print(line)
@@ -75,7 +77,7 @@ def in_freecad() -> None:
 
     def shot(name: str) -> None:
         Gui.updateGui()
-        pump(0.5)
+        pump(1.0)
         screen = QtGui.QGuiApplication.primaryScreen()
         pix = screen.grabWindow(0)
         path = os.path.join(out, name)
@@ -98,12 +100,7 @@ def in_freecad() -> None:
             from LeatherCutWorkbench.post.emulator import FakeController
 
             mw = Gui.getMainWindow()
-            mw.setGeometry(0, 0, 1280, 1024)
-            for dock in mw.findChildren(QtGui.QDockWidget):
-                if dock.objectName() in ("Python console", "Report view", "Selection view"):
-                    dock.hide()
-                elif dock.objectName() == "Combo View":
-                    mw.resizeDocks([dock], [430], QtCore.Qt.Horizontal)
+            mw.setGeometry(0, 0, 1280, 800)      # FreeCAD's default docks, as a user sees them
             Gui.activateWorkbench("LeatherCutWB")
             work = tempfile.mkdtemp(prefix="lc-shots-")
             sample = write_sample(os.path.join(work, "sample.dxf"))
@@ -112,6 +109,9 @@ def in_freecad() -> None:
             doc = FreeCAD.ActiveDocument
             job = objects.jobs(doc)[-1]
             fit()
+            area = p.form.findChild(QtGui.QScrollArea, "optionsScrollArea")
+            area.ensureWidgetVisible(p.form.findChild(QtGui.QWidget, "findingsList"))
+            area.horizontalScrollBar().setValue(0)
             shot("01-import.png")
             p.accept()
 
@@ -124,12 +124,14 @@ def in_freecad() -> None:
             p.accept()
 
             Gui.runCommand("LeatherCut_FlagOver")
-            pump()
+            pump(0.8)
             shot("03-flag-over.png")
             panel.CURRENT.decide("Exclude")
             panel.CURRENT.reject()
             Gui.runCommand("LeatherCut_FlagUnder")
-            pump()
+            pump(0.8)
+            panel.CURRENT.zoom()
+            pump(0.3)
             shot("04-flag-under.png")
             panel.CURRENT.decide("Accept")
             panel.CURRENT.reject()
@@ -205,6 +207,22 @@ def in_freecad() -> None:
             finally:
                 ctrl.close()
             del layout
+            aama = os.path.join(REPO, "tests", "data", "samples", "GMX1016S18_AAMA.DXF")
+            FreeCAD.newDocument("Pattern")
+            p = import_dxf.open_import_panel(aama)
+            p.accept()
+            Gui.Selection.clearSelection()
+            Gui.Selection.addSelection(objects.jobs(FreeCAD.ActiveDocument)[-1])
+            Gui.runCommand("LeatherCut_Recognise")
+            p = panel.CURRENT
+            p.preview()
+            fit()
+            pump(0.8)
+            area = p.form.findChild(QtGui.QScrollArea, "optionsScrollArea")
+            area.ensureWidgetVisible(p.form.findChild(QtGui.QWidget, "partsSummary"))
+            area.horizontalScrollBar().setValue(0)
+            shot("11-aama-sizes.png")
+            p.accept()
             code = 0
         except Exception:
             traceback.print_exc()

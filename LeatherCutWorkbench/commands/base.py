@@ -12,7 +12,7 @@ import FreeCADGui as Gui
 
 from ..core.errors import CancelledError, LeatherCutError
 from ..document import objects
-from . import paths
+from . import messages, paths
 
 translate = FreeCAD.Qt.translate
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
@@ -49,10 +49,12 @@ class Command:
     def Activated(self):
         try:
             self.run()
-        except CancelledError:
-            FreeCAD.Console.PrintWarning(translate("LeatherCut", "LeatherCut: cancelled") + "\n")
+        except CancelledError:  # the user's choice, not an error
+            FreeCAD.Console.PrintMessage(translate("LeatherCut", "LeatherCut: cancelled") + "\n")
         except LeatherCutError as exc:
             show_error(self.MENU, str(exc))
+        except OSError as exc:  # a file the user named cannot be read or written
+            show_error(self.MENU, file_error_text(exc))
         except Exception as exc:  # a bug: keep the traceback in the report view
             FreeCAD.Console.PrintError(traceback.format_exc())
             show_error(self.MENU, f"{type(exc).__name__}: {exc}")
@@ -61,8 +63,17 @@ class Command:
         raise NotImplementedError
 
 
+def file_error_text(exc: OSError) -> str:
+    """One line for a file that cannot be read or written."""
+    what = exc.filename or ""
+    return f"{what}: {exc.strerror or exc}" if what else str(exc)
+
+
 def show_error(title: str, message: str) -> None:
-    """Report a user-facing error in the report view and a message box."""
+    """Report a user-facing error in the report view and a message box
+    (CLI option names rewritten for the GUI, see :mod:`.messages`)."""
+    title = translate("LeatherCut", title)
+    message = messages.for_gui(message)
     FreeCAD.Console.PrintError(f"LeatherCut {title}: {message}\n")
     if FreeCAD.GuiUp and not _quiet():
         from PySide import QtGui
@@ -70,6 +81,8 @@ def show_error(title: str, message: str) -> None:
 
 
 def show_info(title: str, message: str) -> None:
+    title = translate("LeatherCut", title)
+    message = messages.for_gui(message)
     FreeCAD.Console.PrintMessage(f"LeatherCut {title}: {message}\n")
     if FreeCAD.GuiUp and not _quiet():
         from PySide import QtGui

@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-from . import base, panel, paths
+from . import base, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -27,7 +27,7 @@ class ProfilesPanel(panel.CloseOnlyPanel):
         from ..post import profiles
         self.profiles = profiles
         self.job = job
-        self.form = Gui.PySideUic.loadUi(paths.ui("MachineProfiles"))
+        self.form = panel.load_form("MachineProfiles")
         self.list = self.form.findChild(QtGui.QListWidget, "profileList")
         self.details = self.form.findChild(QtGui.QPlainTextEdit, "profileDetails")
         self.status = self.form.findChild(QtGui.QLabel, "statusLabel")

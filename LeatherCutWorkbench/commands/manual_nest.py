@@ -16,7 +16,7 @@ import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
 from ..document import pipeline
-from . import base, panel
+from . import base, messages, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -86,7 +86,7 @@ class ManualNestPanel(panel.JobPropertyPanel):
         except Exception as exc:  # keep the panel alive; say what failed
             problems = [f"{type(exc).__name__}: {exc}"]
         self.problems.clear()
-        self.problems.addItems(problems)
+        self.problems.addItems([messages.for_gui(t) for t in problems])
         ok = not problems
         self.show_status(translate("LeatherCut", "No collisions.") if ok else
                          translate("LeatherCut", "{0} problems: colliding parts are red.").format(len(problems)),

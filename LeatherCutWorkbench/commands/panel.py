@@ -18,9 +18,15 @@ import FreeCADGui as Gui
 from PySide import QtGui
 
 from ..core.errors import CancelledError, LeatherCutError
-from . import paths, runner
+from . import messages, panel_layout, paths, runner
 
 translate = FreeCAD.Qt.translate
+
+
+def load_form(name: str):
+    """``resources/ui/<name>.ui`` in a scroll area, progress and status pinned
+    below it (see :mod:`.panel_layout`)."""
+    return panel_layout.scrolling(Gui.PySideUic.loadUi(paths.ui(name)))
 
 
 class JobPropertyPanel:
@@ -34,7 +40,7 @@ class JobPropertyPanel:
         (e.g. to create the job inside it)."""
         self.job = job
         self.doc = job.Document
-        self.form = Gui.PySideUic.loadUi(paths.ui(self.UI))
+        self.form = load_form(self.UI)
         self.form.setWindowTitle(translate("LeatherCut", self.TITLE))
         self.run_state: Optional[runner.StageRun] = None
         self.running = False
@@ -136,11 +142,28 @@ class JobPropertyPanel:
             self.show_status(message)
 
     def show_status(self, text: str, error: bool = False) -> None:
+        text = messages.for_gui(text)
         if self.status is not None:
             self.status.setText(text)
             self.status.setStyleSheet("color: #c62828;" if error else "")
         if error:
             FreeCAD.Console.PrintError(f"LeatherCut {self.TITLE}: {text}\n")
+
+    def report_failure(self, exc: BaseException, cancelled_text: str) -> None:
+        """Say in the panel why a run failed: a cancel is the user's choice (not
+        logged as an error), a LeatherCutError or file error the user can act on
+        (no traceback), anything else a bug (traceback in the report view)."""
+        if isinstance(exc, CancelledError):
+            self.show_status(cancelled_text)
+            FreeCAD.Console.PrintMessage(f"LeatherCut {self.TITLE}: {cancelled_text}\n")
+        elif isinstance(exc, LeatherCutError):
+            self.show_status(str(exc), error=True)
+        elif isinstance(exc, OSError):
+            from .base import file_error_text
+            self.show_status(file_error_text(exc), error=True)
+        else:
+            FreeCAD.Console.PrintError(traceback.format_exc())
+            self.show_status(f"{type(exc).__name__}: {exc}", error=True)
 
     # -- task dialog protocol -------------------------------------------------------
     def getStandardButtons(self):
@@ -155,16 +178,9 @@ class JobPropertyPanel:
         self.running = True
         try:
             self.run()
-        except CancelledError:
-            self.show_status(translate("LeatherCut", "Cancelled. Change the options and press OK, or Cancel."),
-                             error=True)
-            return False
-        except LeatherCutError as exc:
-            self.show_status(str(exc), error=True)
-            return False
-        except Exception as exc:  # a bug: full traceback in the report view
-            FreeCAD.Console.PrintError(traceback.format_exc())
-            self.show_status(f"{type(exc).__name__}: {exc}", error=True)
+        except Exception as exc:
+            self.report_failure(exc, translate(
+                "LeatherCut", "Cancelled. Change the options and press OK, or Cancel."))
             return False
         finally:
             self.running = False
@@ -224,13 +240,8 @@ class StagePanel(JobPropertyPanel):
             self.job_signature = self._signature()
             self.show_result()
             return True
-        except CancelledError:
-            self.show_status(translate("LeatherCut", "Cancelled."), error=True)
-        except LeatherCutError as exc:
-            self.show_status(str(exc), error=True)
-        except Exception as exc:  # a bug: full traceback in the report view
-            FreeCAD.Console.PrintError(traceback.format_exc())
-            self.show_status(f"{type(exc).__name__}: {exc}", error=True)
+        except Exception as exc:
+            self.report_failure(exc, translate("LeatherCut", "Cancelled."))
         finally:
             self.running = False
         return False
@@ -281,6 +292,35 @@ def show(panel) -> None:
     global CURRENT
     Gui.Control.showDialog(panel)
     CURRENT = panel
+    if getattr(panel, "form", None) is not None:
+        # the task box unfolds over a few hundred ms: fit again while it does
+        later(panel, lambda: fit_panel(panel), times=12, interval_ms=150)
+
+
+def fit_panel(panel) -> None:
+    """Fit an open panel's form to the task view (nothing once it is closed)."""
+    if Gui.Control.activeDialog() and CURRENT is panel:
+        panel_layout.fit_to_task_view(panel.form)
+
+
+def later(owner, fn, times: int = 1, interval_ms: int = 0) -> None:
+    """Call ``fn`` ``times`` times, every ``interval_ms``, from the event loop.
+    The timer is kept on ``owner``."""
+    from PySide import QtCore
+    timer = QtCore.QTimer()
+    timer.setInterval(interval_ms)
+    left = [times]
+
+    def tick():
+        left[0] -= 1
+        if left[0] <= 0:
+            timer.stop()
+            owner._later_timer = None   # let go of fn (and what it holds)
+        fn()
+
+    timer.timeout.connect(tick)
+    owner._later_timer = timer
+    timer.start()
 
 
 def ensure_no_dialog() -> None:

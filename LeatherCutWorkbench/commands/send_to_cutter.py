@@ -20,7 +20,7 @@ from PySide import QtCore, QtGui
 
 from ..core.errors import InputError, LeatherCutError
 from ..document import pipeline
-from . import base, paths
+from . import base, messages, panel
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
@@ -91,6 +91,7 @@ class SendSession:
     def _run(self) -> None:
         from ..post.link import SendSession as LinkSession, job_from_file
         from ..post.profiles import load_profile
+        emulator = None
         try:
             if self.resume_from:
                 self.log.append(f"resuming at segment {self.resume_from}")
@@ -98,8 +99,13 @@ class SendSession:
                 moved = set_aside_stale_journal(self.gcode_path)
                 if moved:
                     self.log.append(f"journal of an earlier G-code kept as {moved}")
-            self.session = LinkSession(job_from_file(self.gcode_path), load_profile(self.machine),
-                                       self.url, journal_path(self.gcode_path), mode=self.mode,
+            profile = load_profile(self.machine)
+            url, emulator = open_port(self.url, profile)
+            if emulator is not None:
+                self.log.append(f"dry run: {self.url} (the built-in controller emulator, "
+                                "nothing moves)")
+            self.session = LinkSession(job_from_file(self.gcode_path), profile,
+                                       url, journal_path(self.gcode_path), mode=self.mode,
                                        check=self.check_first,
                                        resume_from=self.resume_from or None,
                                        progress=self._on_progress)
@@ -129,6 +135,9 @@ class SendSession:
             FreeCAD.Console.PrintError(traceback.format_exc())
             self.error = f"{type(exc).__name__}: {exc}"
             self.state = "failed"
+        finally:
+            if emulator is not None:
+                emulator.close()
 
     def pause(self) -> None:
         if self.session is not None:
@@ -143,14 +152,41 @@ class SendSession:
             self.session.abort()
 
 
+#: port choices offered besides the serial ports found: the controller emulator
+EMULATOR_PORTS = ("emulator:grblhal", "emulator:grbl")
+
+
+def open_port(url: str, profile):
+    """(URL to open, emulator or None): ``emulator:grbl`` / ``emulator:grblhal``
+    start the built-in fake controller, as ``leathercut send`` does."""
+    from ..cli.send_cmd import _open_port
+    return _open_port(url, profile)
+
+
+def serial_ports():
+    """Device names of the serial ports pyserial finds (empty without pyserial)."""
+    try:
+        from serial.tools import list_ports
+        return [p.device for p in list_ports.comports()]
+    except Exception:  # no pyserial or no permission to list: the user types the port
+        return []
+
+
 class SendPanel:
     """Port, check mode, start / pause / resume / stop, progress and log."""
 
     def __init__(self, job):
         self.job = job
-        self.form = Gui.PySideUic.loadUi(paths.ui("SendToCutter"))
+        self.form = panel.load_form("SendToCutter")
         self.port = self.form.findChild(QtGui.QLineEdit, "PostPort")
         self.port.setText(job.PostPort)
+        self.choices = self.form.findChild(QtGui.QComboBox, "portChoices")
+        self.choices.addItem(translate("LeatherCut", "Choose a port…"), "")
+        for dev in serial_ports():
+            self.choices.addItem(dev, dev)
+        for url in EMULATOR_PORTS:
+            self.choices.addItem(translate("LeatherCut", "{0} – dry run, no machine").format(url), url)
+        self.choices.activated.connect(self._choose_port)
         self.check = self.form.findChild(QtGui.QCheckBox, "checkFirst")
         self.mode = self.form.findChild(QtGui.QComboBox, "streamMode")
         self.resume = self.form.findChild(QtGui.QComboBox, "resumeFrom")
@@ -169,6 +205,20 @@ class SendPanel:
         self.gcode = job.PostLastOutput
         self.file_label.setText(self.gcode or translate("LeatherCut", "(post-process the job first)"))
         self.fill_resume_points()
+
+    def _choose_port(self, index: int) -> None:
+        url = self.choices.itemData(index)
+        if url:
+            self.port.setText(url)
+
+    def choose_port(self, url: str) -> bool:
+        """Pick ``url`` from the offered ports (macros, tests); False when not offered."""
+        i = self.choices.findData(url)
+        if i < 0:
+            return False
+        self.choices.setCurrentIndex(i)
+        self._choose_port(i)
+        return True
 
     def fill_resume_points(self) -> None:
         """Segments of the journal's job; the first incomplete one is suggested."""
@@ -199,7 +249,8 @@ class SendPanel:
             return None
         url = self.port.text().strip()
         if not url:
-            self.show(translate("LeatherCut", "Enter the port (e.g. /dev/ttyUSB0 or socket://host:23)."), True)
+            self.show(translate("LeatherCut", "Enter the port (e.g. /dev/ttyUSB0 or socket://host:23), "
+                                              "or choose emulator:grblhal for a dry run."), True)
             return None
         try:  # the layout gate: parts may have been moved since the file was written
             pipeline.check_gate(self.job)
@@ -247,12 +298,14 @@ class SendPanel:
         if not s.running:
             self.timer.stop()
             if s.result is not None and not s.result.ok:
+                # a stop the operator asked for is not an error
+                asked = s.result.status == "aborted"
                 self.show(translate("LeatherCut", "Stopped ({0}) at line {1}: {2}. Choose where to resume.").format(
-                    s.result.status, s.result.line, s.result.message), True)
+                    s.result.status, s.result.line, s.result.message), not asked)
             self.fill_resume_points()
 
     def show(self, text: str, error: bool = False) -> None:
-        self.status.setText(text)
+        self.status.setText(messages.for_gui(text))
         self.status.setStyleSheet("color: #c62828;" if error else "")
 
     def getStandardButtons(self):
@@ -283,7 +336,6 @@ class SendToCutter(base.Command):
         return job is not None and bool(job.PostLastOutput) and not Gui.Control.activeDialog()
 
     def run(self) -> None:
-        from . import panel
         panel.ensure_no_dialog()
         job = base.active_job()
         if job.PostFormat != "gcode":

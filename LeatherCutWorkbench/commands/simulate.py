@@ -1,74 +1,21 @@
 """*Simulate*: animate the knife along the planned path (cutting and idle moves)
-at the machine's speeds times a speed-up factor."""
+in the planner's estimated machine time (speeds, acceleration, knife lifts)
+times a speed-up factor."""
 
 from __future__ import annotations
 
-import bisect
 import time
-from typing import List, Tuple
 
 import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtCore, QtGui
 
-from ..core.geometry import dist, path_points
 from ..document import objects, pipeline
-from . import base, paths
+from . import base, panel
+from .timeline import timeline_of
 
 QT_TRANSLATE_NOOP = FreeCAD.Qt.QT_TRANSLATE_NOOP
 translate = FreeCAD.Qt.translate
-
-DEFAULT_CUT_FEED = 6000.0     # mm/min when no machine profile can be loaded
-DEFAULT_RAPID_FEED = 20000.0  # mm/min
-
-
-class Timeline:
-    """The head's position over machine time (s) along the plan: idle moves at
-    the rapid feed, cuts at the cut feed (acceleration ignored).  With
-    ``passes`` -- (tool name, feed mm/min, items, strike points) in machine
-    order, from a multi-tool job -- every tool's pass is played in turn and
-    ``what[k]`` names the tool of item ``k``."""
-
-    def __init__(self, plan, cut_feed: float, rapid_feed: float, passes=None):
-        self.points: List[Tuple[float, float]] = [plan.home]
-        self.times: List[float] = [0.0]
-        self.item_at: List[int] = [-1]
-        self.what: List[Tuple[str, int, int]] = []      # (tool, number in pass, pass size)
-        rapid_v = rapid_feed / 60.0
-        for tool, feed, items, points in passes or [("", cut_feed, plan.items, [])]:
-            cut_v = feed / 60.0
-            n = len(items) + len(points)
-            for k, it in enumerate(items):
-                self.what.append((tool, k + 1, n))
-                self._add(it.start, rapid_v, -1)
-                for p in path_points(it.segments, 0.1)[1:]:
-                    self._add(p, cut_v, len(self.what) - 1)
-            for k, p in enumerate(points):
-                self.what.append((tool, len(items) + k + 1, n))
-                self._add(p, rapid_v, -1)
-                self._add(p, rapid_v, len(self.what) - 1)
-        self._add(plan.home, rapid_v, -1)
-
-    def _add(self, p, speed: float, item: int) -> None:
-        t = self.times[-1] + dist(self.points[-1], p) / max(speed, 1e-9)
-        self.points.append(p)
-        self.times.append(t)
-        self.item_at.append(item)
-
-    @property
-    def duration(self) -> float:
-        return self.times[-1]
-
-    def at(self, t: float):
-        """(position, item index or -1 when idle) at machine time ``t``."""
-        t = min(max(t, 0.0), self.duration)
-        k = max(1, bisect.bisect_left(self.times, t))
-        if k >= len(self.times):
-            return self.points[-1], -1
-        t0, t1 = self.times[k - 1], self.times[k]
-        f = 0.0 if t1 <= t0 else (t - t0) / (t1 - t0)
-        a, b = self.points[k - 1], self.points[k]
-        return (a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])), self.item_at[k]
 
 
 class SimulatePanel:
@@ -78,20 +25,9 @@ class SimulatePanel:
         self.job = job
         self.obj = objects.stage_object(job, "CutPath")
         plan = pipeline.stored_plan(job)
-        cut, rapid = DEFAULT_CUT_FEED, DEFAULT_RAPID_FEED
-        try:
-            from ..post.profiles import load_profile
-            prof = load_profile(job.PostMachine)
-            cut, rapid = prof.cut_feed, prof.rapid_feed
-        except Exception:  # no profile: the defaults give a plausible animation
-            pass
-        tools = pipeline.tool_job(job, plan)
-        passes = None if tools is None else [
-            (p.tool.name, cut if p.tool.main else p.tool.feed,
-             p.items, p.points) for p in tools.passes]
-        self.timeline = Timeline(plan, cut, rapid, passes)
+        self.timeline = timeline_of(job)
         self.items = len(plan.items)
-        self.form = Gui.PySideUic.loadUi(paths.ui("Simulate"))
+        self.form = panel.load_form("Simulate")
         self.slider = self.form.findChild(QtGui.QSlider, "positionSlider")
         self.slider.setRange(0, 1000)
         self.speed = self.form.findChild(QtGui.QDoubleSpinBox, "speedFactor")
@@ -183,7 +119,6 @@ class Simulate(base.Command):
         return base.has_stage("CutPath") and not Gui.Control.activeDialog()
 
     def run(self) -> None:
-        from . import panel
         panel.ensure_no_dialog()
         panel.show(SimulatePanel(base.active_job()))
 

@@ -302,6 +302,7 @@ class Part:
     grade: int = 0
     parent_id: Optional[str] = None    # part whose hole this part lies in
     lines: List["OpenChain"] = field(default_factory=list)   # internal / stitch lines (drawn, not cut)
+    size: str = ""                     # pattern size (AAMA / ASTM graded sets), "" otherwise
 
     @property
     def net_area(self) -> float:

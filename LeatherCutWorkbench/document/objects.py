@@ -272,6 +272,40 @@ class FlagProxy(Proxy):
             style.style_flag(obj)
 
 
+class PartProxy(Proxy):
+    """One recognised part, named from the drawing (AAMA piece and size, block
+    name or layer).  ``Include`` and ``Quantity`` are a person's choice: a part
+    not included is neither nested nor cut; nesting places ``Quantity`` copies.
+    Changing either marks nesting and planning out of date."""
+
+    ROLE = "Part"
+
+    def __init__(self, obj):
+        super().__init__(obj)
+        obj.addProperty("App::PropertyString", "PartId", "Part", "recognised part id")
+        obj.addProperty("App::PropertyString", "PartName", "Part",
+                        "name from the drawing (AAMA piece name, block name) or empty")
+        obj.addProperty("App::PropertyString", "Size", "Part", "pattern size (graded sets) or empty")
+        obj.addProperty("App::PropertyFloat", "Area", "Part", "net area (outline minus holes), mm²")
+        obj.addProperty("App::PropertyBool", "Include", "Part", "cut this part")
+        obj.addProperty("App::PropertyInteger", "Quantity", "Part",
+                        "copies to nest (a drawing cut where it lies cuts each part once)")
+        for p in ("PartId", "PartName", "Size", "Area"):
+            obj.setEditorMode(p, 1)
+
+    def onChanged(self, obj, prop):
+        if prop in ("Include", "Quantity") and getattr(obj, "Proxy", None) is self \
+                and not restoring(obj):
+            if prop == "Quantity" and obj.Quantity < 1:
+                obj.Quantity = 1
+                return
+            job = job_of(obj)
+            if job is not None:
+                mark_out_of_date(job, "Recognise", include_self=False)
+            if prop == "Include" and FreeCAD.GuiUp and obj.ViewObject is not None:
+                obj.ViewObject.Visibility = bool(obj.Include)
+
+
 class PlacedPartProxy(Proxy):
     """One placed copy of a part.  Its shape is the part in part coordinates
     (mirrored when ``Mirrored``); its ``Placement`` is the nesting placement

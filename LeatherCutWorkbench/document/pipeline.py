@@ -28,7 +28,7 @@ from ..core import geometry, model
 from ..core.decisions import apply_decisions, rerun_with_fixes
 from ..core.errors import InputError
 from ..core.progress import ProgressFn
-from . import objects, options, shapes
+from . import objects, options, part_objects, shapes
 from .job_properties import add_nest_container_properties
 from .objects import translate
 
@@ -173,10 +173,13 @@ def _recognise_apply(job, rec: model.Recognition):
     # a person's decisions survive re-recognition when the same flag comes back
     kept = {(o.Kind, tuple(sorted(o.Ids))): o.Decision for o in flag_objects(job)
             if o.Decision != "Undecided"}
+    kept_parts = part_objects.current_choices(job)
     grp = objects.make_stage_group(job, objects.RecognitionProxy, "Recognition",
                                    translate("LeatherCut", "Recognition"))
     objects.store_data(grp, rec)
     build_recognition_view(grp, rec)
+    part_objects.build(grp, rec, kept_parts, lambda p: part_shape(p, False),
+                       objects.load_data(objects.stage_object(job, "Drawing")))
     fgrp = job.Document.addObject("App::DocumentObjectGroup", "Flags")
     fgrp.Label = translate("LeatherCut", "Flags")
     grp.addObject(fgrp)
@@ -283,7 +286,7 @@ def effective_recognition(job) -> model.Recognition:
         _RERUN_CACHE[slot] = (key, out)
         return out
 
-    return apply_decisions(rec, decisions, recognise_again)
+    return part_objects.apply_to(job, apply_decisions(rec, decisions, recognise_again))
 
 
 #: (document, job) -> (key, recognition with the accepted fixes applied)
@@ -586,8 +589,16 @@ POST_EXTENSIONS = {"gcode": ".nc", "hpgl": ".plt", "dxf": ".dxf"}
 
 
 def default_output(job) -> str:
-    base = os.path.splitext(job.SourceFile or job.Document.FileName or "job")[0] or "job"
-    return base + POST_EXTENSIONS.get(job.PostFormat, ".nc")
+    """Where Post-process writes when the job names no file: ``<job label>.<ext>``
+    in the user's output folder preference (``OutputFolder``), else beside the
+    saved document, else in the home folder -- never next to the source DXF
+    (often a read-only or shared folder)."""
+    folder = options.preferences().GetString("OutputFolder", "").strip()
+    if not folder:
+        saved = job.Document.FileName
+        folder = os.path.dirname(saved) if saved else os.path.expanduser("~")
+    stem = re.sub(r"[^\w.-]+", "_", job.Label).strip("._") or "job"
+    return os.path.join(os.path.expanduser(folder), stem + POST_EXTENSIONS.get(job.PostFormat, ".nc"))
 
 
 def _post_prepare(job):

@@ -110,12 +110,71 @@ def compound(edges: Sequence[Part.Shape]) -> Part.Shape:
 
 
 def contour_shape(contour: model.Contour) -> Part.Shape:
-    """A closed wire of the contour when its edges connect, else a compound."""
+    """A closed wire of the contour (so it can be filled), else a compound of
+    its edges.
+
+    Arc end points computed from centre and angles miss the next segment's
+    start by up to ~1e-5 mm, more than OCC's 1e-7 mm confusion tolerance, and
+    a wire joined across such gaps can give an invalid face; so the loop is
+    built with consecutive segments meeting at one shared node each."""
+    try:
+        wire = Part.Wire(_closed_loop_edges(contour.segments))
+        if wire.isClosed():
+            return wire
+    except (Part.OCCError, ValueError):
+        pass
     edges = path_edges(contour.segments)
     try:
         return Part.Wire(edges)
     except Part.OCCError:
         return compound(edges)
+
+
+#: largest end-to-start distance (mm) bridged by :func:`_closed_loop_edges`
+#: (recognition joins within its join tolerance, 0.01 mm by default)
+LOOP_SNAP_TOL = 0.01
+
+
+def _closed_loop_edges(segments: Sequence[Segment]) -> List[Part.Edge]:
+    """Edges of a closed loop whose consecutive segments meet at one node each:
+    the node is the midpoint of one segment's end and the next one's start;
+    lines run between nodes, arcs pass through their own midpoint, flattened
+    curves keep their inner points, a lone full circle stays a circle.
+    Raises ValueError for a gap over :data:`LOOP_SNAP_TOL`."""
+    segs = [s for s in segments if _seg_len(s) > _MIN_LEN]
+    if len(segs) == 1 and isinstance(segs[0], ArcSeg) and abs(segs[0].sweep) >= 360.0 - 1e-9:
+        return segment_edges(segs[0])
+    n = len(segs)
+    nodes = []
+    for i in range(n):
+        a, b = segs[i].end, segs[(i + 1) % n].start
+        if math.dist(a, b) > LOOP_SNAP_TOL:
+            raise ValueError("gap in the loop")
+        nodes.append(((a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0))
+    out: List[Part.Edge] = []
+    for i, seg in enumerate(segs):
+        p0, p1 = nodes[i - 1], nodes[i]
+        if math.dist(p0, p1) <= _MIN_LEN:
+            continue            # shorter than OCC can represent: the nodes coincide
+        if isinstance(seg, ArcSeg):
+            mid = math.radians(seg.start_angle + seg.sweep / 2.0)
+            pm = (seg.center[0] + seg.radius * math.cos(mid), seg.center[1] + seg.radius * math.sin(mid))
+            out.append(Part.Arc(_v(p0), _v(pm), _v(p1)).toShape())
+        elif isinstance(seg, CurveSeg):
+            inner = [p for p in seg.pts[1:-1]
+                     if math.dist(p, p0) > _MIN_LEN and math.dist(p, p1) > _MIN_LEN]
+            out.extend(Part.makePolygon([_v(p) for p in [p0] + inner + [p1]]).Edges)
+        else:
+            out.append(Part.LineSegment(_v(p0), _v(p1)).toShape())
+    return out
+
+
+def _seg_len(seg: Segment) -> float:
+    if isinstance(seg, ArcSeg):
+        return abs(math.radians(seg.sweep)) * seg.radius
+    if isinstance(seg, CurveSeg):
+        return sum(math.dist(a, b) for a, b in zip(seg.pts, seg.pts[1:]))
+    return math.dist(seg.start, seg.end)
 
 
 def marker_points(points: Sequence[Point]) -> Part.Shape:

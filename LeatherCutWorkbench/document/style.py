@@ -37,6 +37,7 @@ FLAG_DECIDED = "#00897b"    # decided: teal
 PLACED_OK = "#f3e9dc"       # placed part face: leather beige
 PLACED_EDGE = "#1f5fbf"
 PLACED_COLLIDES = "#e53935"  # overlapping / outside the container: red
+PART_FACE = "#f3e9dc"       # a recognised part chosen for the cut: leather beige, see-through
 
 
 def set_pattern(vo, pattern: int) -> None:
@@ -82,3 +83,16 @@ def style_placed(obj) -> None:
     vo.ShapeColor = _rgb(PLACED_COLLIDES if bad else PLACED_OK)
     vo.LineColor = _rgb(PLACED_COLLIDES if bad else PLACED_EDGE)
     vo.LineWidth = 2.0
+
+
+def style_part(obj) -> None:
+    """A recognised part: its face see-through beige under the contour lines;
+    hidden while it is not included."""
+    if not FreeCAD.GuiUp or obj.ViewObject is None:
+        return
+    vo = obj.ViewObject
+    vo.ShapeColor = _rgb(PART_FACE)
+    vo.LineColor = _rgb(KINDS["outer"][0])
+    vo.LineWidth = 1.0
+    vo.Transparency = 60
+    vo.Visibility = bool(getattr(obj, "Include", True))

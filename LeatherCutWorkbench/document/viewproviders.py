@@ -110,6 +110,15 @@ class FlagViewProvider(ViewProvider):
         return True
 
 
+class PartViewProvider(ViewProvider):
+    """A recognised part: double-click opens the Recognise panel's parts list."""
+
+    ICON = "Contour"
+
+    def doubleClicked(self, vobj):
+        return _open_stage_panel(vobj, "LeatherCut_Recognise")
+
+
 class PlacedViewProvider(ViewProvider):
     ICON = "ManualNest"
 

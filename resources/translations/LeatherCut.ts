@@ -159,11 +159,27 @@
 <context>
     <name>Flags</name>
     <message>
+        <source> mm</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Accept all fixes up to</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>All at once (one undo step)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Each decision is one undo step and is saved with the document.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <source>Exclude</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Fit the 3D view to the gap (under-recognised) or the region (over-recognised)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -180,6 +196,10 @@
     </message>
     <message>
         <source>Undecided (stage default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Zoom to it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -234,6 +254,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>What the import found</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>aama</source>
         <translation type="unfinished"></translation>
     </message>
@@ -273,8 +297,13 @@
 <context>
     <name>LeatherCut</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="169"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="206"/>
         <source>(post-process the job first)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="99"/>
+        <source>Accept all fixes up to</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -288,22 +317,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="228"/>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="244"/>
         <source>Cancelled.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="159"/>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="182"/>
         <source>Cancelled. Change the options and press OK, or Cancel.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="111"/>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="117"/>
         <source>Cannot set {0}: {1}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="419"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="184"/>
+        <source>Choose a port…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="329"/>
         <source>Container</source>
         <translation type="unfinished"></translation>
     </message>
@@ -328,33 +362,38 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="469"/>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="459"/>
         <source>Cut path</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="102"/>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="108"/>
         <source>DXF drawings (*.dxf *.DXF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="62"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="132"/>
         <source>DXF drawings (*.dxf *.DXF);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="425"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="335"/>
         <source>Defects</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="177"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="139"/>
         <source>Drawing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="201"/>
-        <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23).</source>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="69"/>
+        <source>Drawing size {0} × {1} mm, units {2} ({3})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="252"/>
+        <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23), or choose emulator:grblhal for a dry run.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -368,17 +407,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="277"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="96"/>
+        <source>Exclude all over-recognised regions</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="242"/>
         <source>Excluded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="219"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="184"/>
         <source>Flags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="274"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="157"/>
+        <source>Gap: {0} mm. {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="239"/>
         <source>Holes</source>
         <translation type="unfinished"></translation>
     </message>
@@ -403,7 +452,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="20"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="22"/>
         <source>Import DXF</source>
         <translation type="unfinished"></translation>
     </message>
@@ -418,17 +467,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="185"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="147"/>
         <source>Layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="415"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="325"/>
         <source>Layout</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="275"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="240"/>
         <source>Lead-ins</source>
         <translation type="unfinished"></translation>
     </message>
@@ -453,7 +502,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="188"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="150"/>
         <source>Marks</source>
         <translation type="unfinished"></translation>
     </message>
@@ -483,13 +532,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="276"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="241"/>
         <source>Open chains</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="273"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="238"/>
         <source>Outer contours</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="33"/>
+        <source>Part</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/part_objects.py" line="57"/>
+        <source>Parts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -513,17 +572,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="197"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="248"/>
         <source>Post-process the job as G-code first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="17"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="34"/>
+        <source>Qty</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="111"/>
+        <source>Quantity must be a whole number.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="24"/>
         <source>Recognise</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="215"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="178"/>
         <source>Recognition</source>
         <translation type="unfinished"></translation>
     </message>
@@ -553,7 +622,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="284"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="342"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
         <translation type="unfinished"></translation>
     </message>
@@ -563,22 +632,27 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="257"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="33"/>
+        <source>Size</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="316"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="244"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="303"/>
         <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="621"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="566"/>
         <source>Tool paths</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="625"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="570"/>
         <source>Tool {0}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -593,12 +667,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="82"/>
+        <source>chosen in this panel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/plan_path.py" line="31"/>
         <source>converged</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="133"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="69"/>
         <source>cutting {0} of {1}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -608,13 +687,38 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="289"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="36"/>
+        <source>excluded (not a part)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/panel.py" line="329"/>
         <source>finish or cancel the open task panel first</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="135"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="37"/>
+        <source>fix accepted</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="38"/>
+        <source>fix rejected</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="81"/>
+        <source>from the AAMA 'Units:' text</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="71"/>
         <source>idle move (knife up)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="35"/>
+        <source>included (a part)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -623,7 +727,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="434"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="83"/>
+        <source>not stated: assumed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="424"/>
         <source>over-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -633,8 +742,18 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="175"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="60"/>
+        <source>size {0}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="226"/>
         <source>start of the job</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="80"/>
+        <source>stated in the file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -643,7 +762,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="136"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="72"/>
         <source>t = {0:.1f} s of {1:.1f} s – {2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -653,7 +772,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/objects.py" line="435"/>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="34"/>
+        <source>undecided</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/document/objects.py" line="425"/>
         <source>under-recognised</source>
         <translation type="unfinished"></translation>
     </message>
@@ -673,13 +797,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="31"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="48"/>
         <source>{0} edges on {1} layers, {2} marks, units {3} ({4})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="32"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="92"/>
+        <source>{0} of {1} parts to cut, {2} copies in all.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="153"/>
         <source>{0} parts ({1} excluded), {2} holes, {3} lead-ins, {4} open chains; flags: {5} over-recognised, {6} under-recognised</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="73"/>
+        <source>{0} pattern pieces</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -698,12 +832,32 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="131"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="188"/>
+        <source>{0} – dry run, no machine</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="75"/>
+        <source>{0}, net area {1}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="51"/>
+        <source>{0}: gap {1} mm at {2} – {3}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/flags.py" line="53"/>
+        <source>{0}: region {1} – {2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="67"/>
         <source>{0}: {1} of {2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="239"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="296"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -717,6 +871,10 @@
     <name>LeatherCutPreferences</name>
     <message>
         <source>Defaults for new jobs. A job keeps its own values in its properties (Job &gt; Property view).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Folder for machine files when a job names none (empty: beside the saved .FCStd document, or your home folder before it is saved; never next to the DXF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -748,6 +906,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Output folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Path planning method (ga, aco or nn)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -757,6 +919,10 @@
     </message>
     <message>
         <source>Spacing between parts (mm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>beside the saved document</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -810,12 +976,12 @@
 <context>
     <name>LeatherCut_ImportDXF</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="49"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="119"/>
         <source>Import DXF…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="50"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="120"/>
         <source>Import a DXF drawing into a new LeatherCut job (edges grouped by layer)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -875,12 +1041,12 @@
 <context>
     <name>LeatherCut_Recognise</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="42"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="163"/>
         <source>Recognise</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="43"/>
+        <location filename="../../LeatherCutWorkbench/commands/recognise.py" line="164"/>
         <source>Recognise closed part contours, holes, lead-ins and open chains and flag doubtful contours</source>
         <translation type="unfinished"></translation>
     </message>
@@ -901,12 +1067,12 @@
 <context>
     <name>LeatherCut_SendToCutter</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="270"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="329"/>
         <source>Send to cutter…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="271"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="330"/>
         <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
         <translation type="unfinished"></translation>
     </message>
@@ -914,12 +1080,12 @@
 <context>
     <name>LeatherCut_Simulate</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="179"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="115"/>
         <source>Animate the knife along the planned cut path at the machine's speeds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="178"/>
+        <location filename="../../LeatherCutWorkbench/commands/simulate.py" line="114"/>
         <source>Simulate</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1061,6 +1227,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Move the drawing to the machine origin</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Plan now (preview, shows metrics)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1191,6 +1361,10 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Parts to cut</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Recognise</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1198,11 +1372,19 @@
         <source>Recognise now (preview)</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <source>Sizes (tick the sizes to cut):</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Tick a part to cut it; Qty is the number of copies nesting places</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>SendToCutter</name>
     <message>
-        <source>/dev/ttyUSB0, socket://host:23, loop://</source>
+        <source>/dev/ttyUSB0, socket://host:23, emulator:grblhal</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1223,6 +1405,10 @@
     </message>
     <message>
         <source>Send to cutter</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>Serial ports found on this computer, and the built-in controller emulator for a dry run without hardware</source>
         <translation type="unfinished"></translation>
     </message>
     <message>

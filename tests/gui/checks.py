@@ -25,6 +25,15 @@ def check(name, cond, detail=""):
     return cond
 
 
+def pump(seconds=0.2):
+    """Let the GUI process events for ``seconds``."""
+    from PySide import QtGui
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtGui.QApplication.processEvents()
+        time.sleep(0.01)
+
+
 def finish(steps, out_dir):
     """Run ``steps()``, write ``out_dir/result.json`` and exit FreeCAD."""
     code = 1

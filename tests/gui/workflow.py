@@ -17,7 +17,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from checks import check, finish  # noqa: E402
+from checks import check, finish, pump  # noqa: E402
 
 import FreeCAD
 import FreeCADGui as Gui
@@ -25,13 +25,6 @@ from PySide import QtCore, QtGui
 
 OUT = os.environ["LC_OUT"]
 SAMPLE = os.environ["LC_SAMPLE"]
-
-
-def pump(seconds=0.2):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        QtGui.QApplication.processEvents()
-        time.sleep(0.01)
 
 
 def steps():

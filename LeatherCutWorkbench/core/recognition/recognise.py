@@ -400,6 +400,7 @@ def _piece_fields(part: Part, drawing: Drawing, grp: Group) -> None:
         return
     part.name = info.name + (f" size {info.size}" if getattr(info, "size", "") else "")
     part.quantity = max(1, int(getattr(info, "quantity", 1) or 1))
+    part.size = getattr(info, "size", "") or ""
     if getattr(info, "grain_angle", None) is not None or grp.has_grain:
         part.rotations = [0.0, 180.0]
 
