@@ -71,7 +71,7 @@ class Fault:
     at_line: int
     code: int = 20            # error / alarm number
     seconds: float = 1.0      # stall length
-    wait_full: bool = False   # hold the line until the RX buffer is 3/4 full (busy machine)
+    wait_full: bool = False   # hold the line until the RX buffer is half full (busy machine)
     long_move: bool = False   # planner: the machine is in a long move from planner_blocks
                               # lines before the fault until a hold/reset (or 3 s), so the
                               # queue holds acknowledged, unexecuted lines when it fires
@@ -265,7 +265,7 @@ class FakeController:
             if f.wait_full and not f.fired and f.at_line == nxt:
                 if not hasattr(f, "_since"):
                     f._since = time.monotonic()
-                full = len(self._rx) >= self.rx_size * 3 // 4
+                full = len(self._rx) >= self.rx_size // 2
                 return not full and time.monotonic() - f._since < 3.0
         return False
 
