@@ -96,13 +96,8 @@ def run(args: argparse.Namespace) -> Report:
     marks = [m for part in result.parts_to_cut for m in part.marks]
     text = render(result.plan, profile, fmt, options_from_args(args), marks)
     out = args.post_output
-    tmp = out + ".part"
-    try:
-        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, out)
-    except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror}", source=out)
+    from ..post.jobfile import write_job_file
+    write_job_file(out, text, gcode=fmt == "gcode")      # atomic; G-code sealed
     plan = result.plan
     n_lines = text.count("\n")
     data = {

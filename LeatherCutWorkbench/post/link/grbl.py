@@ -162,6 +162,7 @@ class GrblLink:
         self._status_rx_time = 0.0                  # when the last report arrived
         self._garbled_seen = 0
         self._stop_lost = False
+        self.homed = False                          # $H done on this connection
 
     # ----------------------------------------------------------- connection
     def open(self) -> "GrblLink":
@@ -352,9 +353,11 @@ class GrblLink:
                             f"{self.info.axes} ({self.info.flavour} {self.info.version})",
                             source=self.url)
 
-    def ready_for_job(self, profile: MachineProfile, home: bool = True) -> None:
+    def ready_for_job(self, profile: MachineProfile, home: bool = True,
+                      force_home: bool = False) -> None:
         """Refuse a controller in Door/Hold; home (``$H``) when locked in Alarm and
-        the profile homes, else refuse."""
+        the profile homes, else refuse.  ``force_home``: home even when Idle
+        (a resume after the position was lost)."""
         st = self.status()
         if st is None:
             raise LinkError("no status reply", source=self.url)
@@ -362,13 +365,14 @@ class GrblLink:
         if state.startswith("Door") or state.startswith("Hold") or state in ("Jog", "Home"):
             raise LinkError(f"controller is in {state}; clear it at the machine first",
                             source=self.url)
-        if state == "Alarm":
+        if state == "Alarm" or (force_home and home and profile.homing):
             if not (home and profile.homing):
                 raise LinkError("controller is locked in Alarm: home or unlock it at the machine "
                                 "($H / $X) and re-zero before sending", source=self.url)
             r, _ = self.command("$H", timeout=120.0)
             if r.kind != "ok":
                 raise LinkError(f"homing failed: {r.raw} {r.text}", source=self.url)
+            self.homed = True
         self._alarm = None
 
     # ----------------------------------------------------------- realtime

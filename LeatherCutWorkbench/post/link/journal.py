@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Set
 
 from ...core.errors import InputError
-from .recovery import STOP_EVENTS, executed_lines
+from .recovery import STOP_EVENTS, executed_lines, tool_line
 
 
 def job_digest(lines: Sequence[str]) -> str:
@@ -128,6 +128,12 @@ class Journal:
     def event(self, kind: str, **data) -> None:
         self.write({"e": kind, "time": time.time(), **data}, sync=True)
 
+    def __enter__(self) -> "Journal":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
     def close(self) -> None:
         if not self._fh.closed:
             self._fh.flush()
@@ -155,6 +161,7 @@ class JournalState:
     bases: List[str] = field(default_factory=list)
     pass_id: str = ""                                      # run id of the pass's first run
     passes: int = 0                                        # fresh sends in the journal
+    run_executed: List[Set[int]] = field(default_factory=list)
 
     @property
     def last_end(self) -> Optional[Dict]:
@@ -180,12 +187,27 @@ class JournalState:
         if self._executed is None:
             if self.source:
                 m = self.machine
-                self._executed, self.bases = executed_lines(
+                self._executed, self.bases, self.run_executed = executed_lines(
                     self.runs, self.source, m.get("axes", "XYZABC"), m.get("wrapped", ""),
                     float(m.get("turn", 360.0)), m.get("rotary", ""))
             else:
                 self._executed, self.bases = self.acked_set, ["acks"] * len(self.runs)
+                self.run_executed = [set(r["acked"]) for r in self.runs]
         return self._executed
+
+    def tool_at(self) -> Optional[Dict]:
+        """Where the tool is after the last run's stop: ``{"line": 1-based line,
+        "block", "segment", "how": on | after}`` (on = the move it stopped on,
+        from the reported position; after = the last line known executed)."""
+        self.executed()
+        if not self.runs or not self.source:
+            return None
+        got = tool_line(self.runs[-1], self.run_executed[-1], self.bases[-1], self.source)
+        if got is None:
+            return None
+        i, how = got
+        return {"line": i + 1, "block": self.source[i].strip(),
+                "segment": self.segs[i] if i < len(self.segs) else "", "how": how}
 
     def _segments_with(self, have: Set[int]) -> List[str]:
         lines_of: Dict[str, List[int]] = {}
@@ -269,6 +291,11 @@ def load_journal(path: str) -> JournalState:
                                     "run": rec.get("run", "")})
                 elif e == "zero" and st.runs:
                     st.runs[-1]["zeroed"] = rec.get("how", "")
+                elif e == "reconnect" and st.runs and st.runs[-1]["end"] is not None:
+                    # the controller kept power and position over a lost link and
+                    # reported where it stopped: evidence for the interrupted run
+                    st.runs[-1]["end"] = {**st.runs[-1]["end"], "position": rec.get("position"),
+                                          "position_trusted": True, "position_lost": False}
                 elif (e in STOP_EVENTS or e == "done") and st.runs:
                     st.runs[-1]["end"] = rec
     if not st.digest:

@@ -143,13 +143,31 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
 
 
 def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapped: str,
-                   turn: float, rotary: str) -> Tuple[Set[int], List[str]]:
-    """Union of the executed lines of every run, and the basis of each run."""
+                   turn: float, rotary: str) -> Tuple[Set[int], List[str], List[Set[int]]]:
+    """Union of the executed lines of every run, the basis of each run and each
+    run's own executed lines."""
     tol = _tolerances(axes, rotary)
     done: Set[int] = set()
     bases: List[str] = []
+    per_run: List[Set[int]] = []
     for run in runs:
         lines, basis = executed_in_run(run, source, axes, wrapped, turn, tol)
         done |= lines
         bases.append(basis)
-    return done, bases
+        per_run.append(lines)
+    return done, bases, per_run
+
+
+def tool_line(run: Dict, executed: Set[int], basis: str, source: Sequence[str]
+              ) -> Optional[Tuple[int, str]]:
+    """Where the tool is after the run's stop, as (0-based line, how known):
+    with a reported position the move it stopped on ("on": the first
+    acknowledged line not executed) or the last executed line ("after"); from
+    a sync only the last line known executed ("after")."""
+    acked = sorted(set(run["acked"]))
+    if basis == "position":
+        for i in acked:
+            if i not in executed and strip_line(source[i]):
+                return i, "on"
+    mine = sorted(i for i in executed if i in set(acked))
+    return (mine[-1], "after") if mine else None
