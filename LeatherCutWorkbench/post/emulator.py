@@ -22,9 +22,22 @@ see (facts: docs in /work/shared/notes/machine.md, GRBL 1.1h and grblHAL):
 Faults (:class:`Fault`) fire when the controller is about to process the
 N-th G-code line it receives (1-based, counted over the emulator's life):
 ``error`` (answer ``error:code`` instead), ``alarm`` (``ALARM:code``, lock),
-``reset`` (spontaneous reset: buffer lost, banner, locked when homing is on),
-``stall`` (silent for ``seconds``: no acks, no status), ``disconnect`` (the
-port goes away) and ``garble`` (the line arrives corrupted).
+``reset`` (power cycle: buffer and queue lost, banner, the position counters
+restart at 0 where the machine stands, locked when homing is on; with
+``after`` > 0 the line is processed and the power fails ``after`` seconds
+later), ``stall`` (silent for ``seconds``: no acks, no status), ``disconnect``
+(the port goes away; :meth:`FakeController.reconnect` is the controller seen
+again, with or without a power loss), ``garble`` (the line arrives
+corrupted), ``garble_reply`` (its answer arrives as ``o\xffk``), ``spurious``
+(an extra ``ok`` arrives before its answer) and ``drop_ack`` (processed, never
+answered).  ``split`` writes every reply byte by byte (split reads).
+
+Where the machine really is: :attr:`offset` is the physical position minus
+the position counters (0 until a power cycle; ``$H`` and :meth:`rezero` -- the
+operator setting the work zero at the machine -- bring it back to 0).
+:attr:`misplaced` counts motion lines executed while the offset was not 0
+(cut in the wrong place); :attr:`max_rx` is the most bytes ever waiting in
+the receive buffer.
 
 Planner: with ``planner_blocks`` > 0 the controller behaves like the real
 firmware's look-ahead queue -- a motion line is acknowledged when it enters
@@ -75,6 +88,7 @@ class Fault:
     long_move: bool = False   # planner: the machine is in a long move from planner_blocks
                               # lines before the fault until a hold/reset (or 3 s), so the
                               # queue holds acknowledged, unexecuted lines when it fires
+    after: float = 0.0        # reset: power fails this long after processing the line
     fired: bool = False
 
 
@@ -96,6 +110,10 @@ class FakeController:
     session: int = 0
     overflows: int = 0
     gcode_lines: int = 0
+    split: bool = False                   # write replies byte by byte
+    offset: dict = field(default_factory=dict)
+    misplaced: int = 0
+    max_rx: int = 0
 
     def __post_init__(self) -> None:
         if not self.rx_size:
@@ -118,6 +136,8 @@ class FakeController:
         self._next_exec = 0.0
         self._mpos = dict(self._interp.pos)
         self._frozen_until = 0.0
+        self._power_fail_at = 0.0
+        self.offset = {a: float(self.offset.get(a, 0.0)) for a in self.axes}
         self._thread = threading.Thread(target=self._run, name="fake-grbl", daemon=True)
 
     # ------------------------------------------------------------ lifecycle
@@ -143,6 +163,51 @@ class FakeController:
     def __exit__(self, *exc) -> None:
         self.close()
 
+    def reconnect(self, power_lost: bool) -> "FakeController":
+        """The controller as a host sees it after this one's port went away
+        (``disconnect``): a new port; without a power loss it kept its state
+        and position (Idle, buffered lines executed), with one it restarted
+        (counters at 0 where the machine stands, locked when homing is on).
+        Not started."""
+        phys = self.physical()
+        emu = FakeController(flavour=self.flavour, axes=self.axes, rx_size=self.rx_size,
+                             homing=self.homing, wrapped=self.wrapped,
+                             planner_blocks=self.planner_blocks, block_time=self.block_time,
+                             split=self.split)
+        emu.session = self.session + 1
+        if power_lost:
+            emu.offset = dict(phys)
+        else:
+            emu.offset = dict(self.offset)
+            emu._interp.pos = {a: phys[a] - self.offset[a] for a in self.axes}
+            emu._mpos = dict(emu._interp.pos)
+            emu._state = "Idle"
+        return emu
+
+    def physical(self) -> dict:
+        """Where the machine physically is (counters + offset)."""
+        pos = self.position
+        return {a: pos[a] + self.offset.get(a, 0.0) for a in self.axes}
+
+    def rezero(self) -> None:
+        """The operator sets the work zero at the machine again: the counters
+        agree with the physical position (offset 0)."""
+        phys = self.physical()
+        self._interp.pos = dict(phys)
+        self._mpos = dict(phys)
+        self.offset = {a: 0.0 for a in self.axes}
+
+    def unlock(self) -> None:
+        """The operator unlocks the controller at the machine (``$X`` from a
+        terminal, after clearing the cause of an alarm)."""
+        if self._state == "Alarm":
+            self._state = "Idle"
+
+    def _placed(self, block: str) -> None:
+        if any(abs(v) > 1e-9 for v in self.offset.values()) and \
+                any(a in block for a in "XYZABC"):
+            self.misplaced += 1
+
     @property
     def state(self) -> str:
         return self._state
@@ -164,10 +229,18 @@ class FakeController:
         return "Grbl 1.1h ['$' for help]"
 
     def _send(self, text: str) -> None:
+        self._send_raw((text + "\r\n").encode("ascii"))
+
+    def _send_raw(self, data: bytes) -> None:
         if self._closed:
             return
         try:
-            os.write(self.master, (text + "\r\n").encode("ascii"))
+            if self.split:
+                for i in range(len(data)):
+                    os.write(self.master, data[i:i + 1])
+                    time.sleep(0.0002)
+            else:
+                os.write(self.master, data)
         except OSError:
             self._closed = True
 
@@ -177,6 +250,9 @@ class FakeController:
             if now < self._stall_until:
                 time.sleep(min(0.01, self._stall_until - now))
                 continue
+            if self._power_fail_at and now >= self._power_fail_at:
+                self._power_fail_at = 0.0
+                self._reset(moving=False, power_cycle=True)
             busy = self._has_line() and not self._state.startswith("Hold")
             wait = max(0.001, min(0.02, self._next_time - now)) if busy else 0.02
             try:
@@ -197,6 +273,7 @@ class FakeController:
                         self._rx.append(b)
                     else:
                         self.overflows += 1
+                self.max_rx = max(self.max_rx, len(self._rx))
             if self._state.startswith("Hold"):
                 continue
             self._execute_queue()
@@ -231,6 +308,7 @@ class FakeController:
             entry, block, end = self._queue.pop(0)
             entry[3] = True
             self.executed.append(block)
+            self._placed(block)
             self._mpos = end
             self._next_exec = time.monotonic() + self.block_time
 
@@ -314,6 +392,9 @@ class FakeController:
             self._interp = self._saved_interp
         self._check = False
         keep = self.position                 # queued moves are dropped, not made
+        if power_cycle:                      # counters restart at 0 where the machine is
+            self.offset = {a: keep[a] + self.offset.get(a, 0.0) for a in self.axes}
+            keep = {a: 0.0 for a in self.axes}
         if not power_cycle:                  # a power cycle says nothing, it reboots
             moving = moving or (bool(self._queue) and not self._state.startswith("Hold"))
         self._queue.clear()
@@ -368,9 +449,13 @@ class FakeController:
                 except OSError:
                     pass
                 return
-            if fault.kind == "reset":
+            if fault.kind == "reset" and fault.after <= 0:
                 self._reset(moving=False, power_cycle=True)
                 return
+            if fault.kind == "reset":
+                self._power_fail_at = time.monotonic() + fault.after
+            if fault.kind == "spurious":
+                self._send("ok")
             if fault.kind == "alarm":
                 # soft limit: hold, queue flushed, position kept, locked
                 self.results.append([self.session, block, f"ALARM:{fault.code}", False])
@@ -406,9 +491,15 @@ class FakeController:
             self.results.append(entry)
             if entry[3]:
                 self.executed.append(block)
+                self._placed(block)
                 self._mpos = dict(self._interp.pos)
             else:
                 self._queue.append((entry, block, dict(motion[-1].end)))
+        if fault is not None and fault.kind == "drop_ack":
+            return
+        if fault is not None and fault.kind == "garble_reply":
+            self._send_raw(b"o\xffk\r\n")
+            return
         self._send("ok")
 
     def _answer_error(self, code: int, block: str, latch: bool = True) -> None:
@@ -462,6 +553,7 @@ class FakeController:
                 return
             self._interp.pos = {a: 0.0 for a in self.axes}
             self._mpos = dict(self._interp.pos)
+            self.offset = {a: 0.0 for a in self.axes}    # at the switches: true zero
             self._state = "Idle"
         else:
             self._send("error:3")

@@ -86,6 +86,7 @@ class SendSession:
         self.resume_from = resume_from
         self.confirm_work_zero = confirm_work_zero
         self._state = None
+        self.streamed: Optional[SendJob] = None      # what was (or is being) streamed
         self.link = GrblLink(url, baud or profile.baud, progress=progress, **link_options)
         self.link.use_profile(profile)
         self.outcome = SendOutcome(journal=journal_path)
@@ -182,6 +183,7 @@ class SendSession:
             zero = self._zero()
             if link.feed_linear_only and self.profile.rotary_in_feed:
                 to_send, self.outcome.feeds_adjusted = linear_feed_only(to_send, self.profile)
+            self.streamed = to_send
             if self.check:
                 self.outcome.check = link.run_check(to_send, self.mode)
                 if not self.outcome.check.ok:
