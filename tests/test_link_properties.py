@@ -31,15 +31,10 @@ import random
 
 import pytest
 
-from LeatherCutWorkbench.post import gcode
 from LeatherCutWorkbench.post.emulator import FakeController, Fault
-from LeatherCutWorkbench.post.link import SendSession, job_from_program
-from LeatherCutWorkbench.post.profiles import load_profile, profile_from_dict
 
-from post_helpers import sample_plan
+from link_helpers import cutting_lines, make_job, profile_for, send_until_done
 
-FAST = dict(status_interval=0.03, link_timeout=0.5, greet_timeout=3.0, hold_timeout=1.0,
-            reset_timeout=1.0, command_timeout=3.0)
 SEEDS = list(range(40))
 SUMMARY = {"runs": 0, "streams": 0, "faults fired": 0, "lines lost": 0, "lines repeated": 0,
            "misplaced": 0, "overflows": 0, "stopped safely": 0, "kinds": {}}
@@ -47,20 +42,6 @@ SUMMARY = {"runs": 0, "streams": 0, "faults fired": 0, "lines lost": 0, "lines r
 KINDS = ["error", "alarm2", "alarm1", "reset", "reset_after", "stall_short", "stall_long",
          "disconnect_keep", "disconnect_power", "garble", "garble_reply", "spurious",
          "spurious_reset", "drop_ack"]
-
-
-def profile_for(flavour, segment_sync):
-    name = "grbl11_knife_z_servo" if flavour == "grbl" else "grblhal_tangential"
-    prof = load_profile(name)
-    if segment_sync:
-        prof = profile_from_dict({**prof.to_json(), "sync_every_segment": True})
-    return prof
-
-
-def make_job(profile):
-    plan = sample_plan()
-    plan.items += sample_plan(dx=0, dy=400).items
-    return job_from_program("job.nc", gcode.build_program(plan, profile))
 
 
 def faults_for(kind, line, rnd):
@@ -81,27 +62,6 @@ def faults_for(kind, line, rnd):
     if kind == "spurious_reset":
         return [Fault("spurious", line), Fault("reset", line, after=0.02)]
     return [Fault(kind, line)]
-
-
-def cutting_lines(job):
-    """Job line indices that cut: motion lines inside a segment."""
-    return {job.index[k] for k, b in enumerate(job.blocks)
-            if job.segs[k] and b.lstrip("N0123456789").startswith(("G1", "G2", "G3"))}
-
-
-def stream_outcome(emu, mark, session, sent):
-    """Job line indices the machine executed during one stream: the lines it
-    processed in the stream's own controller session align 1:1 with the
-    blocks sent; motion of the job in a later session is stray."""
-    rows = emu.results[mark:]
-    mine = [r for r in rows if r[0] == session]
-    done = []
-    for k, (_, block, reply, executed) in enumerate(mine[:len(sent.blocks)]):
-        assert block == sent.blocks[k] or block.startswith("#"), (k, block, sent.blocks[k])
-        if executed and sent.index[k] is not None:
-            done.append(sent.index[k])
-    stray = [r[1] for r in rows if r[0] != session and r[3] and ("X" in r[1] or "Y" in r[1])]
-    return done, stray
 
 
 def check_stop(emu, res, profile):
@@ -130,51 +90,15 @@ def run_case(seed, tmp_path):
     emu = FakeController(flavour=flavour, axes=axes, homing=profile.homing,
                          planner_blocks=planner, block_time=0.002, split=split,
                          faults=faults_for(kind, line, rnd)).start()
-    emus = [emu]
-    counts = {}
-    stray_all = []
-    resumed = []
-    try:
-        resume, confirm = None, False
-        for attempt in range(4):
-            mark, session = len(emu.results), emu.session
-            s = SendSession(job, profile, emu.port, jpath, mode=mode, resume_from=resume,
-                            confirm_work_zero=confirm, **FAST)
-            try:
-                out = s.run()
-            except Exception as exc:
-                if resume and "nothing to resume" in str(exc):
-                    break
-                raise
-            SUMMARY["streams"] += 1
-            done, stray = stream_outcome(emu, mark, session, s.streamed)
-            stray_all += stray
-            for i in done:
-                counts[i] = counts.get(i, 0) + 1
-            res = out.result
-            SUMMARY["stopped safely"] += check_stop(emu, res, profile)
-            if out.ok:
-                break
-            if out.resumed_from:
-                resumed.append(out.resumed_from)
-            # ---- the operator: reconnect, re-zero when the position was lost
-            if res.status == "lost" and emu._closed:
-                emu = emu.reconnect(power_lost=kind == "disconnect_power").start()
-                emus.append(emu)
-            confirm = False
-            if not profile.homing:
-                emu.unlock()                 # $X at the machine after an alarm
-                if res.position_lost:
-                    emu.rezero()
-                    confirm = True
-            resume = "auto"
-        else:
-            pytest.fail(f"seed {seed} ({kind}): not done after 3 resumes")
-        if out.resumed_from:
-            resumed.append(out.resumed_from)
-    finally:
-        for e in emus:
-            e.close()
+    stopped = []
+    counts, outs, emus, stray_all = send_until_done(
+        emu, job, profile, jpath, mode, power_lost=kind == "disconnect_power",
+        on_stop=lambda e, out: stopped.append(check_stop(e, out.result, profile)))
+    if not outs[-1].ok and outs[-1].resume_from is not None:
+        pytest.fail(f"seed {seed} ({kind}): not done after 3 resumes")
+    SUMMARY["streams"] += len(outs)
+    SUMMARY["stopped safely"] += sum(stopped)
+    resumed = [o.resumed_from for o in outs if o.resumed_from]
     fired = all(f.fired for f in emus[0].faults)
     cut = cutting_lines(job)
     lost = sorted(i for i in cut if counts.get(i, 0) == 0)
@@ -190,6 +114,7 @@ def run_case(seed, tmp_path):
                 allowed.add(job.index[k])
     where = f"seed {seed}: {kind} at line {line}, {flavour} {mode} planner {planner} " \
             f"segment_sync {segment_sync} split {split}, resumed {resumed}"
+    SUMMARY["lines lost"] += len(lost)
     assert not lost, f"{where}: lines never cut {[job.source[i] for i in lost][:5]}"
     assert set(repeated) <= allowed, f"{where}: cut twice {sorted(set(repeated) - allowed)}"
     assert not stray_all, f"{where}: job moves after the stop {stray_all}"
@@ -199,7 +124,7 @@ def run_case(seed, tmp_path):
     assert rx_max <= emus[0].rx_size - 1 and sum(e.overflows for e in emus) == 0, where
     SUMMARY["runs"] += 1
     SUMMARY["faults fired"] += fired
-    SUMMARY["lines repeated"] += len(repeated)
+    SUMMARY["lines repeated"] += sum(counts[i] - 1 for i in repeated)
     key = f"max bytes in flight (RX {emus[0].rx_size})"
     SUMMARY[key] = max(SUMMARY.get(key, 0), rx_max)
     SUMMARY["kinds"][kind] = SUMMARY["kinds"].get(kind, 0) + 1

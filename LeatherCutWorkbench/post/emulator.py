@@ -29,8 +29,12 @@ later), ``stall`` (silent for ``seconds``: no acks, no status), ``disconnect``
 (the port goes away; :meth:`FakeController.reconnect` is the controller seen
 again, with or without a power loss), ``garble`` (the line arrives
 corrupted), ``garble_reply`` (its answer arrives as ``o\xffk``), ``spurious``
-(an extra ``ok`` arrives before its answer) and ``drop_ack`` (processed, never
-answered).  ``split`` writes every reply byte by byte (split reads).
+(an extra ``ok`` arrives before its answer), ``drop_ack`` (processed, never
+answered) and ``drop_status`` (the next ``?`` goes unanswered).  A
+``disconnect`` with ``after`` > 0 answers the line and loses the port
+``after`` seconds later, the machine finishing its queue.  ``split`` writes
+every reply byte by byte (split reads); ``settings`` adds ``$$`` settings
+(e.g. grblHAL ``$701``).
 
 Where the machine really is: :attr:`offset` is the physical position minus
 the position counters (0 until a power cycle; ``$H`` and :meth:`rezero` -- the
@@ -111,6 +115,7 @@ class FakeController:
     overflows: int = 0
     gcode_lines: int = 0
     split: bool = False                   # write replies byte by byte
+    settings: dict = field(default_factory=dict)   # extra $$ settings, e.g. {"701": "1"}
     offset: dict = field(default_factory=dict)
     misplaced: int = 0
     max_rx: int = 0
@@ -137,6 +142,8 @@ class FakeController:
         self._mpos = dict(self._interp.pos)
         self._frozen_until = 0.0
         self._power_fail_at = 0.0
+        self._disconnect_at = 0.0
+        self._drop_status = 0
         self.offset = {a: float(self.offset.get(a, 0.0)) for a in self.axes}
         self._thread = threading.Thread(target=self._run, name="fake-grbl", daemon=True)
 
@@ -253,6 +260,16 @@ class FakeController:
             if self._power_fail_at and now >= self._power_fail_at:
                 self._power_fail_at = 0.0
                 self._reset(moving=False, power_cycle=True)
+            if self._disconnect_at and now >= self._disconnect_at:
+                self._closed = True          # the cable goes; the machine runs on
+                try:
+                    os.close(self.master)
+                except OSError:
+                    pass
+                while self._queue:           # it finishes what it had queued
+                    self._execute_queue()
+                    time.sleep(self.block_time)
+                break
             busy = self._has_line() and not self._state.startswith("Hold")
             wait = max(0.001, min(0.02, self._next_time - now)) if busy else 0.02
             try:
@@ -359,6 +376,9 @@ class FakeController:
 
     def _realtime(self, b: int) -> None:
         if b == ord("?"):
+            if self._drop_status:
+                self._drop_status -= 1       # line noise ate this poll
+                return
             self._send(self._status())
         elif b == ord("!"):
             self._frozen_until = 0.0
@@ -442,7 +462,9 @@ class FakeController:
                 self._rx[:0] = raw + b"\n"     # processed after the stall
                 self.gcode_lines -= 1
                 return
-            if fault.kind == "disconnect":
+            if fault.kind == "disconnect" and fault.after > 0:
+                self._disconnect_at = time.monotonic() + fault.after
+            elif fault.kind == "disconnect":
                 self._closed = True
                 try:
                     os.close(self.master)
@@ -456,6 +478,8 @@ class FakeController:
                 self._power_fail_at = time.monotonic() + fault.after
             if fault.kind == "spurious":
                 self._send("ok")
+            if fault.kind == "drop_status":
+                self._drop_status = 1
             if fault.kind == "alarm":
                 # soft limit: hold, queue flushed, position kept, locked
                 self.results.append([self.session, block, f"ALARM:{fault.code}", False])
@@ -524,7 +548,7 @@ class FakeController:
         elif cmd == "$":
             for k, v in (("13", "0"), ("20", "0"), ("22", "1" if self.homing else "0"),
                          ("32", "0"), ("130", "2500.000"), ("131", "1600.000"),
-                         ("132", "100.000")):
+                         ("132", "100.000"), *sorted(self.settings.items())):
                 self._send(f"${k}={v}")
         elif cmd == "G":
             s = self._interp.state
