@@ -384,3 +384,19 @@ def test_grblhal_feed_on_linear_axes_only_takes_back_the_rotary_raise(tmp_path):
     assert max(feeds) <= profile.cut_feed
     same, n = linear_feed_only(job, profile)
     assert n == out.feeds_adjusted
+
+
+def test_the_end_marker_is_a_comment_to_the_real_linuxcnc_interpreter(tmp_path):
+    """The seal is one parenthesised comment after the program end: LinuxCNC
+    2.9's interpreter accepts the sealed file and makes the same moves."""
+    import test_post_rs274 as rs
+    if not os.path.isfile(rs.RS274):
+        pytest.skip("real LinuxCNC interpreter not unpacked (bash tools/get_rs274.sh)")
+    from LeatherCutWorkbench.post import gcode
+    from LeatherCutWorkbench.post.profiles import load_profile
+    from post_helpers import sample_plan
+    text = gcode.export(sample_plan(dx=10, dy=20), load_profile("linuxcnc_tangential"))
+    rc0, _, plain = rs.run_rs274(tmp_path, text)
+    rc, out, canon = rs.run_rs274(tmp_path, jobfile.seal(text))
+    assert rc0 == 0 and rc == 0, out
+    assert rs.canon_moves(canon) == rs.canon_moves(plain)
