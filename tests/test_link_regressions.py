@@ -249,7 +249,7 @@ def test_a_spurious_ok_never_overflows_the_buffer_and_a_reset_after_it_loses_not
     cutting lines of segment 1:2."""
     profile = profile_for("grbl")
     job = make_job(profile, copies=1)
-    for at in range(2, 40, 3):
+    for at in range(2, 40, 6):
         emu = FakeController(flavour="grbl", axes="XYZ", line_time=0.002,
                              faults=[Fault("spurious", at), Fault("reset", at, after=0.02)])
         counts, outs, emus, stray = send_until_done(emu.start(), job, profile,
@@ -343,8 +343,10 @@ def test_a_disconnect_that_swallows_an_items_sync_repeats_at_most_one_segment(tm
     job = make_job(profile, copies=1)
     last3 = max(k for k, s in enumerate(job.segs) if s.startswith("3:"))
     sync = job.blocks.index("G4P0", last3) + 1          # item 3's sync, after the lift
+    # the sync is executed, its ok is lost on the wire, then the cable goes
     emu = FakeController(flavour="grblhal", axes="XYZC", homing=True,
-                         faults=[Fault("disconnect", sync, after=0.0005)]).start()
+                         faults=[Fault("drop_ack", sync),
+                                 Fault("disconnect", sync, after=0.05)]).start()
     counts, outs, emus, stray = send_until_done(emu, job, profile, str(tmp_path / "j"),
                                                 "char-count", power_lost=False)
     assert outs[0].result.status == "lost" and outs[-1].ok
@@ -354,6 +356,9 @@ def test_a_disconnect_that_swallows_an_items_sync_repeats_at_most_one_segment(tm
     segs = {job.segs[job.index.index(i)] for i in repeated}
     assert len(segs) <= 1, segs
     assert outs[1].zero == ""                          # kept its position: no homing needed
+    st = load_journal(str(tmp_path / "j"))
+    st.executed()
+    assert st.bases[0] == "position" and any(e["e"] == "reconnect" for e in st.events)
 
 
 # ------------------------------------------------------------------ item 9

@@ -22,8 +22,9 @@ see (facts: docs in /work/shared/notes/machine.md, GRBL 1.1h and grblHAL):
 Faults (:class:`Fault`) fire when the controller is about to process the
 N-th G-code line it receives (1-based, counted over the emulator's life):
 ``error`` (answer ``error:code`` instead), ``alarm`` (``ALARM:code``, lock),
-``reset`` (power cycle: buffer and queue lost, banner, the position counters
-restart at 0 where the machine stands, locked when homing is on; with
+``reset`` (power cycle: buffer and queue lost, bytes arriving during
+``boot_time`` lost, then the banner; the position counters restart at 0
+where the machine stands, locked when homing is on; with
 ``after`` > 0 the line is processed and the power fails ``after`` seconds
 later), ``stall`` (silent for ``seconds``: no acks, no status), ``disconnect``
 (the port goes away; :meth:`FakeController.reconnect` is the controller seen
@@ -115,6 +116,7 @@ class FakeController:
     overflows: int = 0
     gcode_lines: int = 0
     split: bool = False                   # write replies byte by byte
+    boot_time: float = 0.05               # s after a power cycle before the banner
     settings: dict = field(default_factory=dict)   # extra $$ settings, e.g. {"701": "1"}
     offset: dict = field(default_factory=dict)
     misplaced: int = 0
@@ -142,6 +144,7 @@ class FakeController:
         self._mpos = dict(self._interp.pos)
         self._frozen_until = 0.0
         self._power_fail_at = 0.0
+        self._boot_until = 0.0
         self._disconnect_at = 0.0
         self._drop_status = 0
         self.offset = {a: float(self.offset.get(a, 0.0)) for a in self.axes}
@@ -257,9 +260,17 @@ class FakeController:
             if now < self._stall_until:
                 time.sleep(min(0.01, self._stall_until - now))
                 continue
+            if self._boot_until:
+                if now < self._boot_until:
+                    self._discard_input(self._boot_until - now)
+                    continue
+                self._boot_until = 0.0
+                self._discard_input(0.0)
+                self._greet_after_reset()
             if self._power_fail_at and now >= self._power_fail_at:
                 self._power_fail_at = 0.0
                 self._reset(moving=False, power_cycle=True)
+                continue                     # boots first (see _boot_until)
             if self._disconnect_at and now >= self._disconnect_at:
                 self._closed = True          # the cable goes; the machine runs on
                 try:
@@ -307,6 +318,15 @@ class FakeController:
                     break
                 if self.line_time > 0:
                     break
+
+    def _discard_input(self, wait: float) -> None:
+        """Read and drop what the host sends while the controller boots."""
+        try:
+            ready, _, _ = select.select([self.master], [], [], max(0.0, min(wait, 0.01)))
+            if ready:
+                os.read(self.master, 4096)
+        except (OSError, ValueError):
+            self._closed = True
 
     def _execute_queue(self) -> None:
         """Run queued motion blocks, one per ``block_time``."""
@@ -428,16 +448,43 @@ class FakeController:
             self._state = "Alarm" if self.homing else "Idle"
         elif self._state != "Alarm":
             self._state = "Idle"
+        if power_cycle:
+            # the bootloader runs first: bytes arriving meanwhile are lost, the
+            # banner comes when the firmware starts
+            self._boot_until = time.monotonic() + self.boot_time
+            return
+        self._greet_after_reset()
+
+    def _greet_after_reset(self) -> None:
         self._send(self._banner())
         if self._state == "Alarm":
             self._send("[MSG:'$H'|'$X' to unlock]")
 
     def _fault_for(self, n: int) -> Optional[Fault]:
+        """The fault that decides how line ``n`` is answered.  Faults that only
+        add something (a spurious ``ok``, a dropped ``?``, a power cut or a
+        disconnect some time after the line) fire alongside it, so several
+        faults may share one line."""
+        main = None
         for f in self.faults:
-            if not f.fired and f.at_line == n:
+            if f.fired or f.at_line != n:
+                continue
+            if f.kind == "spurious":
                 f.fired = True
-                return f
-        return None
+                self._send("ok")
+            elif f.kind == "drop_status":
+                f.fired = True
+                self._drop_status = 1
+            elif f.kind == "reset" and f.after > 0:
+                f.fired = True
+                self._power_fail_at = time.monotonic() + f.after
+            elif f.kind == "disconnect" and f.after > 0:
+                f.fired = True
+                self._disconnect_at = time.monotonic() + f.after
+            elif main is None:
+                f.fired = True
+                main = f
+        return main
 
     def _process_one(self) -> None:
         raw = self._pop_line()
@@ -462,24 +509,16 @@ class FakeController:
                 self._rx[:0] = raw + b"\n"     # processed after the stall
                 self.gcode_lines -= 1
                 return
-            if fault.kind == "disconnect" and fault.after > 0:
-                self._disconnect_at = time.monotonic() + fault.after
-            elif fault.kind == "disconnect":
+            if fault.kind == "disconnect":
                 self._closed = True
                 try:
                     os.close(self.master)
                 except OSError:
                     pass
                 return
-            if fault.kind == "reset" and fault.after <= 0:
+            if fault.kind == "reset":
                 self._reset(moving=False, power_cycle=True)
                 return
-            if fault.kind == "reset":
-                self._power_fail_at = time.monotonic() + fault.after
-            if fault.kind == "spurious":
-                self._send("ok")
-            if fault.kind == "drop_status":
-                self._drop_status = 1
             if fault.kind == "alarm":
                 # soft limit: hold, queue flushed, position kept, locked
                 self.results.append([self.session, block, f"ALARM:{fault.code}", False])

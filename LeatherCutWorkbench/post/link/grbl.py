@@ -587,7 +587,8 @@ class GrblLink:
                 last_poll = now
                 first_unanswered = now
             # send as much as the mode allows
-            while sent < total and not self._paused.is_set() and sync_wait is None:
+            while (sent < total and not self._paused.is_set() and sync_wait is None
+                   and self._banners == banners and self._alarm is None):
                 block = job.blocks[sent]
                 n = len(block) + 1
                 single = mode == "send-response" or bool(EEPROM_PATTERN.match(block))

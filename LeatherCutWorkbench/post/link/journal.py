@@ -295,7 +295,8 @@ def load_journal(path: str) -> JournalState:
                     # the controller kept power and position over a lost link and
                     # reported where it stopped: evidence for the interrupted run
                     st.runs[-1]["end"] = {**st.runs[-1]["end"], "position": rec.get("position"),
-                                          "position_trusted": True, "position_lost": False}
+                                          "position_trusted": True, "position_lost": False,
+                                          "reconnect": True}
                 elif (e in STOP_EVENTS or e == "done") and st.runs:
                     st.runs[-1]["end"] = rec
     if not st.digest:

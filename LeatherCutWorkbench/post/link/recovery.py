@@ -129,14 +129,20 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
     pos = end.get("position") if end else None
     if pos and end.get("position_trusted"):
         motion = trace_run(source, acked_set, axes, wrapped, turn)
+        # a position read on reconnect after a lost link counts only at the end
+        # of the last acknowledged move (the controller ran on to the end of its
+        # buffer; anywhere else it was moved since, e.g. jogged)
+        last = max(motion) if motion else None
         for i in sorted(motion):
-            if i <= last_sync:
+            if i <= last_sync or (end.get("reconnect") and i != last):
                 continue
             for k, mv in enumerate(motion[i]):
                 t = locate(mv, pos, tol)
                 if t is None:
                     continue
                 at_end = t >= 1.0 - 1e-9 and k == len(motion[i]) - 1
+                if end.get("reconnect") and not at_end:
+                    continue
                 stop = i + 1 if at_end else i
                 return {j for j in acked_set if j < stop}, "position"
     return {j for j in acked_set if j <= last_sync}, "sync"

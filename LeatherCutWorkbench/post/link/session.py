@@ -147,7 +147,7 @@ class SendSession:
         with Journal(self.journal_path) as j:
             j.event("reconnect", position=here, state=st.state)
         state.runs[-1]["end"] = {**end, "position": here, "position_trusted": True,
-                                 "position_lost": False}
+                                 "position_lost": False, "reconnect": True}
         state._executed = None
 
     def _zero(self) -> str:
