@@ -294,12 +294,14 @@ def test_the_stop_report_names_where_the_tool_is(tmp_path):
                         block_time=0.005, faults=[fault]) as emu:
         out = SendSession(job, profile, emu.port, str(tmp_path / "j"), mode="char-count",
                           **FAST).run()
-        executed = [r[1] for r in emu.results if r[3]]
+        session = emu.results[0][0]
+        executed = [r[1] for r in emu.results if r[3] and r[0] == session]
     tool = out.tool_at
-    assert out.basis == "position" and tool["how"] == "on"
-    assert tool["line"] != out.result.line                 # not the refused line
+    assert out.basis == "position" and tool["how"] == "after"   # whole blocks, this emulator
+    assert tool["line"] < out.result.line                  # not the refused line
     k = job.index.index(tool["line"] - 1)
-    assert job.blocks[k] not in executed and job.blocks[k - 1] in executed
+    last_move = [b for b in executed if "X" in b or "Y" in b][-1]
+    assert job.blocks[k] == last_move                      # where the machine really is
 
 
 # ------------------------------------------------------------ lost position, port lock
@@ -405,3 +407,34 @@ def test_the_end_marker_is_a_comment_to_the_real_linuxcnc_interpreter(tmp_path):
     rc, out, canon = rs.run_rs274(tmp_path, jobfile.seal(text))
     assert rc0 == 0 and rc == 0, out
     assert rs.canon_moves(canon) == rs.canon_moves(plain)
+
+
+def test_a_garbled_reply_in_check_mode_fails_the_check_and_leaves_check_mode():
+    profile = profile_for("grblhal")
+    job = make_job(profile, copies=1)
+    with FakeController(flavour="grblhal", axes="XYZC",
+                        faults=[Fault("garble_reply", 30)]) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(profile)
+            link.greet()
+            res = link.run_check(job, "char-count")
+            assert res.status == "check-failed" and "garbled reply" in res.message
+            assert link.status().state == "Idle"           # out of check mode
+            assert not [b for b in emu.executed if "X" in b or "Y" in b]   # only the lift
+
+
+def test_tool_location_mid_move_from_the_reported_position(tmp_path):
+    """A position reported half-way along an acknowledged move names that move."""
+    from LeatherCutWorkbench.post.link import Journal, job_from_lines
+    lines = ["G21 G90 G17 G94", "(seg 1:1)", "G1 X10 Y0 F1000", "G1 X10 Y10", "G1 X0 Y10",
+             "G4 P0", "(end item 1)", "M2"]
+    job = job_from_lines("mid.nc", lines)
+    p = str(tmp_path / "j")
+    with Journal.open(p, job, "char-count") as j:
+        for i in (0, 2, 3, 4):
+            j.ack(i, job.job_segs[i])
+        j.event("error", position={"X": 10.0, "Y": 4.0, "Z": 0.0}, position_trusted=True,
+                position_lost=False)
+    st = load_journal(p)
+    assert st.tool_at() == {"line": 4, "block": "G1 X10 Y10", "segment": "1:1", "how": "on"}
+    assert st.first_incomplete() == "1:1"

@@ -176,6 +176,9 @@ def run(args: argparse.Namespace) -> Report:
     if tool and tool["how"] == "on":
         at = (f"The tool stopped on line {tool['line']} ({tool['block']}), segment "
               f"{tool['segment'] or '-'} (from the position the controller reported). ")
+    elif tool and out.basis == "position":
+        at = (f"The tool stopped at the end of line {tool['line']} ({tool['block']}), segment "
+              f"{tool['segment'] or '-'} (from the position the controller reported). ")
     elif tool:
         at = (f"Last line known executed: {tool['line']} ({tool['block']}), segment "
               f"{tool['segment'] or '-'}. ")

@@ -403,9 +403,11 @@ class GrblLink:
         if r.kind != "ok" or not any(p.text == "Enabled" for p in push):
             return StreamResult("check-failed", message=f"cannot enter check mode: {r.raw}")
         res = self._stream(job, None, mode, check=True)
-        banners = self._banners
-        r, push = self.command("$C")
-        self._wait_banner(banners)
+        st = self.status()
+        if st is not None and st.state == "Check":     # a safe stop already reset it
+            banners = self._banners
+            r, push = self.command("$C")
+            self._wait_banner(banners)
         self._drain_acks()
         self._alarm = None
         return res
@@ -530,9 +532,10 @@ class GrblLink:
                              "in flight are lost, position may be lost", safe)
                 res.position_lost = True
                 return res
-            if len(self._garbled) > self._garbled_seen and not check:
+            if len(self._garbled) > self._garbled_seen:
                 bad = self._garbled[self._garbled_seen]
-                return stop("garbled", f"garbled reply {bad!r} from the controller: it may have "
+                return stop("check-failed" if check else "garbled",
+                            f"garbled reply {bad!r} from the controller: it may have "
                             "been an ok or an error, the stream cannot go on", head())
             if self._abort.is_set():
                 return stop("aborted", "stopped by the operator", head())
@@ -551,11 +554,13 @@ class GrblLink:
                         if journal is not None and job.index[sync_wait] is not None:
                             journal.event("sync", i=job.index[sync_wait])
                         sync_wait, sync_ok_at, in_buffer = None, None, 0
-                if pending and st.state == "Idle" and self._status_time > pending[0][2]:
+                if pending and st.state == ("Check" if check else "Idle") \
+                        and self._status_time > pending[0][2]:
                     if idle_mark is None or idle_mark[1] != acked:
                         idle_mark = (self._status_time, acked)
                     elif self._status_time - idle_mark[0] >= _dwell(job.blocks[pending[0][0]]):
-                        return stop("unanswered", f"the controller is Idle but {len(pending)} "
+                        return stop("check-failed" if check else "unanswered",
+                                    f"the controller is {st.state} but {len(pending)} "
                                     "line(s) were never answered (an ok or error was lost or "
                                     "garbled)", pending[0][0])
                 else:

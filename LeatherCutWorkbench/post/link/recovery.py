@@ -144,6 +144,7 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
                 if end.get("reconnect") and not at_end:
                     continue
                 stop = i + 1 if at_end else i
+                run["tool"] = (i, "after" if at_end else "on")
                 return {j for j in acked_set if j < stop}, "position"
     return {j for j in acked_set if j <= last_sync}, "sync"
 
@@ -167,13 +168,11 @@ def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapp
 def tool_line(run: Dict, executed: Set[int], basis: str, source: Sequence[str]
               ) -> Optional[Tuple[int, str]]:
     """Where the tool is after the run's stop, as (0-based line, how known):
-    with a reported position the move it stopped on ("on": the first
-    acknowledged line not executed) or the last executed line ("after"); from
-    a sync only the last line known executed ("after")."""
-    acked = sorted(set(run["acked"]))
-    if basis == "position":
-        for i in acked:
-            if i not in executed and strip_line(source[i]):
-                return i, "on"
-    mine = sorted(i for i in executed if i in set(acked))
+    with a reported position the move it stopped on ("on") or the move it
+    stopped at the end of ("after"), as :func:`executed_in_run` located it;
+    otherwise the last line known executed ("after")."""
+    if basis == "position" and run.get("tool"):
+        return run["tool"]
+    acked = set(run["acked"])
+    mine = sorted(i for i in executed if i in acked)
     return (mine[-1], "after") if mine else None
