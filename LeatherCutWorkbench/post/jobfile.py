@@ -127,7 +127,8 @@ def write_file(path: str, data: Union[str, bytes], encoding: str = "utf-8") -> N
             umask = os.umask(0)
             os.umask(umask)
             mode = 0o666 & ~umask
-        os.fchmod(fd, mode)
+        if hasattr(os, "fchmod"):            # POSIX; Windows keeps its default ACL
+            os.fchmod(fd, mode)
         view = memoryview(raw)
         while view:
             n = os.write(fd, view)
