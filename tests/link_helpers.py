@@ -8,7 +8,8 @@ from LeatherCutWorkbench.post.profiles import load_profile, profile_from_dict
 
 from post_helpers import sample_plan
 
-FAST = dict(status_interval=0.03, link_timeout=0.5, greet_timeout=3.0, hold_timeout=1.0,
+# link_timeout: not so short that a loaded 2-core test machine looks like a lost link
+FAST = dict(status_interval=0.03, link_timeout=1.0, greet_timeout=3.0, hold_timeout=1.0,
             reset_timeout=1.0, command_timeout=3.0)
 
 

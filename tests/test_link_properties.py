@@ -60,7 +60,7 @@ def faults_for(kind, line, rnd):
     if kind == "stall_short":
         return [Fault("stall", line, seconds=0.2)]
     if kind == "stall_long":
-        return [Fault("stall", line, seconds=1.0)]
+        return [Fault("stall", line, seconds=1.6)]
     if kind.startswith("disconnect"):
         return [Fault("disconnect", line)]
     if kind == "spurious_reset":
