@@ -157,11 +157,12 @@ def test_lines_executed_after_an_error_are_not_cut_again(tmp_path):
     The journal records those acks and the resume skips that segment."""
     profile = load_profile("grbl11_knife_z_servo")
     job = make_job(profile)
-    last_of_first = max(k for k, s in enumerate(job.segs) if s == "1:1")
-    fault = Fault("error", last_of_first + 1, code=33, wait_full=True)
+    # within an item (nothing is sent past an item's sync until it is verified)
+    last_of = max(k for k, s in enumerate(job.segs) if s == "3:5")
+    fault = Fault("error", last_of + 1, code=33, wait_full=True)
     done1, done2 = run_fault_case(tmp_path, "grbl", "char-count", fault, line_time=0.0)
-    assert "1:1" not in done1 and "2:1" in done1    # 2:1 was cut from the buffer
-    assert "1:1" in done2 and "2:1" not in done2    # ... and is not cut again
+    assert "3:5" not in done1 and "3:6" in done1    # 3:6 was cut from the buffer
+    assert "3:5" in done2 and "3:6" not in done2    # ... and is not cut again
 
 
 def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, profile=None,
@@ -199,7 +200,7 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, p
     jpath = str(tmp_path / "job.journal")
     emu = FakeController(flavour=flavour, axes=axes, homing=profile.homing, line_time=line_time,
                          planner_blocks=planner, block_time=0.005, faults=[fault]).start()
-    emu2 = None
+    emu2 = link = None
     try:
         link = connect(emu, profile)
         link.check_axes(job)
@@ -223,7 +224,17 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, p
             else:
                 assert emu.spindle == "M5"
         if fault.kind == "alarm":
-            assert res.stopped_safely and "ALARM:2" in res.message
+            # locked in Alarm: the knife-up lines cannot run -- never "stopped safely"
+            assert "ALARM:2" in res.message and not res.stopped_safely
+            lift = profile.lift_axis
+            assert res.verified["state"] == "Alarm"
+            assert res.verified["knife"] == ("up" if emu.position[lift] >= profile.z_up
+                                             else "down")
+            assert "NOT stopped safely" in res.stop_summary()
+        if res.stopped_safely:       # verified, not intended: the machine agrees
+            assert emu.state == "Idle" and emu.spindle == "M5"
+            if profile.lift_axis:
+                assert emu.position[profile.lift_axis] == profile.z_up
         assert res.position_trusted == exact
         session_of_job = emu.results[mark1][0]
         run1 = [r for r in emu.results[mark1:] if r[0] == session_of_job]
@@ -271,8 +282,7 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, p
         link.ready_for_job(profile)              # re-homes when locked in Alarm
         assert target.state == "Idle"
         rjob = resume_job(job, resume_from, profile, skip=state.later_done())
-        journal = Journal.open(jpath, job, mode, profile)
-        journal.event("resume", seg=resume_from)
+        journal = Journal.open(jpath, job, mode, profile, resume_seg=resume_from)
         mark2 = len(target.results)
         res2 = link.stream(rjob, journal, mode)
         journal.close()
@@ -297,27 +307,35 @@ def run_fault_case(tmp_path, flavour, mode, fault, line_time=0.001, planner=0, p
         assert emu.overflows == 0
         return done1, done2
     finally:
+        if link is not None:
+            link.close()
         emu.close()
         if emu2 is not None:
             emu2.close()
 
 
 class BurstPort:
-    """A port on which, right after the host writes its ``burst_after``-th line,
-    the controller's answers to every line so far and then a reset banner (or
-    the loss of the port) arrive in one read -- as when a controller resets or
-    a cable is pulled just after answering a segment's sync.  Replies go
-    through the link's own parser (``_handle``); nothing answers ``?``."""
+    """A port that answers every line with ``ok`` and every ``?`` with an Idle
+    report at once, until the host writes its ``burst_after``-th line: that
+    one's ``ok`` arrives, then a reset banner (or the loss of the port) before
+    any status report -- as when a controller resets or a cable is pulled
+    just after answering a segment's sync.  Replies go through the link's own
+    parser (``_handle``)."""
 
     def __init__(self, link, burst_after, then):
         self.link, self.burst_after, self.then, self.lines = link, burst_after, then, 0
+        self.dead = False
 
     def write(self, data):
-        if data.endswith(b"\n"):
+        if self.dead:
+            return len(data)
+        if data == b"?":
+            self.link._handle("<Idle|MPos:0.000,0.000,0.000|FS:0,0>")
+        elif data.endswith(b"\n"):
             self.lines += 1
+            self.link._handle("ok")
             if self.lines == self.burst_after:
-                for _ in range(self.burst_after):
-                    self.link._handle("ok")
+                self.dead = True
                 if self.then == "reset":
                     self.link._handle("Grbl 1.1h ['$' for help]")
                 else:
@@ -329,10 +347,12 @@ class BurstPort:
 
 
 @pytest.mark.parametrize("then", ["reset", "lost"])
-def test_answers_received_before_a_reset_or_loss_are_journaled(then, tmp_path):
+def test_a_sync_ok_proves_nothing_until_an_idle_report_follows(then, tmp_path):
     """Answers that arrived before the banner (or before the port died) are
-    acknowledgements: a segment's sync among them proves it executed, so the
-    resume starts after it.  Answers after a banner acknowledge nothing."""
+    journaled as acknowledgements, but a sync's ``ok`` proves its segment
+    executed only once a status report received after it shows Idle: a
+    spurious or early ``ok`` cannot fake that.  1:1's sync was verified, 1:2's
+    ``ok`` came just before the reset: the resume starts at 1:2."""
     lines = ["G21 G90 G17 G94", "(seg 1:1)", "G1 X10 Y0 F1000", "G4 P0",
              "(seg 1:2)", "G1 X10 Y10", "G4 P0", "(seg 1:3)", "G1 X0 Y10", "G4 P0",
              "(end item 1)", "M2"]
@@ -345,8 +365,9 @@ def test_answers_received_before_a_reset_or_loss_are_journaled(then, tmp_path):
     res = link.stream(job, journal, "char-count")
     journal.close()
     assert res.status == ("reset" if then == "reset" else "lost")
+    assert res.position_lost
     state = load_journal(jpath)
     assert sorted(state.acked) == [0, 2, 3, 5, 6]
-    assert state.done_segments() == ["1:1", "1:2"] and state.first_incomplete() == "1:3"
-    if then == "reset":
-        assert res.line == 9                       # the first line not answered
+    assert [e["i"] for e in state.events if e["e"] == "sync"] == [3]
+    assert state.done_segments() == ["1:1"] and state.first_incomplete() == "1:2"
+    assert link.ser.lines == 5                     # nothing sent after an unverified sync

@@ -183,13 +183,15 @@ def test_journal_refuses_another_job_and_survives_torn_write(tmp_path):
 
 
 def test_foreign_gcode_file_is_checked_and_journaled_per_line(data_dir, tmp_path):
-    from LeatherCutWorkbench.core.errors import SafetyError
+    from LeatherCutWorkbench.core.errors import InputError, SafetyError
     from LeatherCutWorkbench.post import safety
     from LeatherCutWorkbench.post.link import job_from_file
 
     path = os.path.join(data_dir, "post", "foreign_grbl.nc")
     prof = load_profile("grbl11_knife_z_servo")
-    job = job_from_file(path)
+    with pytest.raises(InputError, match="no LeatherCut end marker"):
+        job_from_file(path)                    # hand-written: only when asked
+    job = job_from_file(path, allow_unsealed=True)
     safety.check_program(job.source, prof, path)
     assert job.segment_ids[0] == "L3" and len(job.blocks) == 13
     with FakeController(flavour="grbl", axes="XYZ") as emu:

@@ -99,13 +99,8 @@ def run(args: argparse.Namespace) -> Report:
     text = tool_export.render(result.plan, result.parts_to_cut, profile, fmt,
                               options_from_args(args), job=tools)
     out = args.post_output
-    tmp = out + ".part"
-    try:
-        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, out)
-    except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror}", source=out)
+    from ..post.jobfile import write_job_file
+    write_job_file(out, text, gcode=fmt == "gcode")      # atomic; G-code sealed
     plan = result.plan
     n_lines = text.count("\n")
     data = {

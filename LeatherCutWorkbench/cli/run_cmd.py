@@ -36,6 +36,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> Report:
     from ..post import svg_preview, tool_export
+    from ..post.jobfile import write_file, write_job_file
     from ..post.profiles import load_profile
 
     if not os.path.isfile(args.file):
@@ -62,15 +63,13 @@ def run(args: argparse.Namespace) -> Report:
     data["tools"] = tool_export.tool_report(tools, profile)
     data["findings"] += [f.to_json() for f in tools.findings]
     data["outputs"] = paths
-    with open(paths["job.nc"], "w", encoding="ascii", newline="\n") as fh:
-        fh.write(text_nc)
-    with open(paths["preview.svg"], "w", encoding="utf-8") as fh:
-        fh.write(svg_preview.render(tools.main.plan(result.plan.home), result.parts_to_cut,
-                                    title=os.path.basename(args.file),
-                                    tools=tool_export.preview_tools(tools)))
-    with open(paths["report.json"], "w", encoding="utf-8") as fh:
-        json.dump(data, fh, indent=2)
-        fh.write("\n")
+    # atomic writes (temp file + fsync + rename); job.nc sealed with its end marker
+    write_job_file(paths["job.nc"], text_nc, gcode=True)
+    write_file(paths["preview.svg"], svg_preview.render(tools.main.plan(result.plan.home),
+                                                        result.parts_to_cut,
+                                                        title=os.path.basename(args.file),
+                                                        tools=tool_export.preview_tools(tools)))
+    write_file(paths["report.json"], json.dumps(data, indent=2) + "\n")
     c = data["counts"]
     lines = [
         f"{args.file}: {c['parts']} parts ({c['parts_excluded']} excluded), {c['holes']} holes, "

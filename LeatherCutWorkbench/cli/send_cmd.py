@@ -46,7 +46,15 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     g.add_argument("--no-home", dest="send_no_home", action="store_true",
                    help="never send $H; refuse when the controller is locked in Alarm")
     g.add_argument("--link-timeout", dest="send_link_timeout", type=positive, default=3.0,
-                   metavar="S", help="no status reply for S seconds = link lost (default 3)")
+                   metavar="S", help="no status reply for S seconds (after two re-polls) = "
+                                     "link lost (default 3)")
+    g.add_argument("--confirm-work-zero", dest="send_confirm_zero", action="store_true",
+                   help="resume after a stop that lost the machine position (power or reset, "
+                        "lost link, ALARM:1/3) on a machine that does not home: you have set "
+                        "the work zero again at the machine")
+    g.add_argument("--allow-unsealed", dest="send_allow_unsealed", action="store_true",
+                   help="stream a hand-written G-code file that has no LeatherCut end marker "
+                        "(never a truncated LeatherCut job)")
 
 
 def register(sub: argparse._SubParsersAction) -> None:
@@ -72,7 +80,7 @@ def load_job(args: argparse.Namespace, profile):
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
     if args.file.lower().endswith(GCODE_EXT):
-        job = job_from_file(args.file)
+        job = job_from_file(args.file, allow_unsealed=args.send_allow_unsealed)
         safety.check_program(job.source, profile, args.file)
         return job
     overrides = post_cmd.tool_overrides(args)
@@ -136,6 +144,7 @@ def run(args: argparse.Namespace) -> Report:
     session = SendSession(job, profile, url, jpath, mode=args.send_mode, check=args.send_check,
                           home=not args.send_no_home, resume_from=args.send_resume,
                           baud=args.send_baud, progress=progress,
+                          confirm_work_zero=args.send_confirm_zero,
                           link_timeout=args.send_link_timeout)
     old_int = signal.signal(signal.SIGINT, lambda *a: session.abort())
     old_usr = None
@@ -165,11 +174,24 @@ def run(args: argparse.Namespace) -> Report:
         return Report(data=data, text=f"{args.file}: job done, {res.acked} lines acknowledged "
                                       f"(journal {jpath})")
     where = f" at line {res.line} ({res.block}), segment {res.segment}" if res.line else ""
-    text = (f"{args.file}: job stopped ({res.status}){where}: {res.message}. "
-            f"{'Stopped safely (feed hold, reset, knife up). ' if res.stopped_safely else ''}"
-            f"Journal {jpath}; check the machine (re-home if the position was lost), then "
-            f"resume with --resume-from {out.resume_from}"
+    tool = out.tool_at
+    if tool and tool["how"] == "on":
+        at = (f"The tool stopped on line {tool['line']} ({tool['block']}), segment "
+              f"{tool['segment'] or '-'} (from the position the controller reported). ")
+    elif tool and out.basis == "position":
+        at = (f"The tool stopped at the end of line {tool['line']} ({tool['block']}), segment "
+              f"{tool['segment'] or '-'} (from the position the controller reported). ")
+    elif tool:
+        at = (f"Last line known executed: {tool['line']} ({tool['block']}), segment "
+              f"{tool['segment'] or '-'}. ")
+    else:
+        at = "No line of this run is known executed. "
+    lost = (" The machine position was lost: home it, or set the work zero again and add "
+            "--confirm-work-zero." if res.position_lost else "")
+    text = (f"{args.file}: job stopped ({res.status}){where}: {res.message}. {at}"
+            f"{res.stop_summary()}{lost} Journal {jpath}; resume with --resume-from "
+            f"{out.resume_from}"
             + (" (from where the controller reported the tool stopped)." if out.basis == "position"
-               else " (position lost: from the last point known executed; part of the item "
-                    "being cut may be cut again)."))
+               else " (from the last point verified executed; part of the item being cut may "
+                    "be cut again)."))
     return Report(data=data, text=text, exit_code=1)

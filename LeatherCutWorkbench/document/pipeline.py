@@ -618,15 +618,15 @@ def _post_compute(inputs, progress):
     plan, parts, profile, fmt, overrides, path = inputs
     text = tool_export.render(plan, parts, profile, fmt, overrides=overrides,
                               overrides_from="PostToolMap")
-    return text, path
+    return text, path, fmt
 
 
 def _post_apply(job, result):
-    text, path = result
+    from ..post.jobfile import write_job_file
+    text, path, fmt = result
     folder = os.path.dirname(os.path.abspath(path))
     os.makedirs(folder, exist_ok=True)
-    with open(path, "w", encoding="utf-8", newline="\n") as fh:
-        fh.write(text)
+    write_job_file(path, text, gcode=fmt == "gcode")     # atomic; G-code sealed
     job.PostLastOutput = path
     return path
 

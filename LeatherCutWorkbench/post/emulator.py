@@ -22,9 +22,27 @@ see (facts: docs in /work/shared/notes/machine.md, GRBL 1.1h and grblHAL):
 Faults (:class:`Fault`) fire when the controller is about to process the
 N-th G-code line it receives (1-based, counted over the emulator's life):
 ``error`` (answer ``error:code`` instead), ``alarm`` (``ALARM:code``, lock),
-``reset`` (spontaneous reset: buffer lost, banner, locked when homing is on),
-``stall`` (silent for ``seconds``: no acks, no status), ``disconnect`` (the
-port goes away) and ``garble`` (the line arrives corrupted).
+``reset`` (power cycle: buffer and queue lost, bytes arriving during
+``boot_time`` lost, then the banner; the position counters restart at 0
+where the machine stands, locked when homing is on; with
+``after`` > 0 the line is processed and the power fails ``after`` seconds
+later), ``stall`` (silent for ``seconds``: no acks, no status), ``disconnect``
+(the port goes away; :meth:`FakeController.reconnect` is the controller seen
+again, with or without a power loss), ``garble`` (the line arrives
+corrupted), ``garble_reply`` (its answer arrives as ``o\xffk``), ``spurious``
+(an extra ``ok`` arrives before its answer), ``drop_ack`` (processed, never
+answered) and ``drop_status`` (the next ``?`` goes unanswered).  A
+``disconnect`` with ``after`` > 0 answers the line and loses the port
+``after`` seconds later, the machine finishing its queue.  ``split`` writes
+every reply byte by byte (split reads); ``settings`` adds ``$$`` settings
+(e.g. grblHAL ``$701``).
+
+Where the machine really is: :attr:`offset` is the physical position minus
+the position counters (0 until a power cycle; ``$H`` and :meth:`rezero` -- the
+operator setting the work zero at the machine -- bring it back to 0).
+:attr:`misplaced` counts motion lines executed while the offset was not 0
+(cut in the wrong place); :attr:`max_rx` is the most bytes ever waiting in
+the receive buffer.
 
 Planner: with ``planner_blocks`` > 0 the controller behaves like the real
 firmware's look-ahead queue -- a motion line is acknowledged when it enters
@@ -71,10 +89,11 @@ class Fault:
     at_line: int
     code: int = 20            # error / alarm number
     seconds: float = 1.0      # stall length
-    wait_full: bool = False   # hold the line until the RX buffer is 3/4 full (busy machine)
+    wait_full: bool = False   # hold the line until the RX buffer is half full (busy machine)
     long_move: bool = False   # planner: the machine is in a long move from planner_blocks
                               # lines before the fault until a hold/reset (or 3 s), so the
                               # queue holds acknowledged, unexecuted lines when it fires
+    after: float = 0.0        # reset: power fails this long after processing the line
     fired: bool = False
 
 
@@ -96,6 +115,12 @@ class FakeController:
     session: int = 0
     overflows: int = 0
     gcode_lines: int = 0
+    split: bool = False                   # write replies byte by byte
+    boot_time: float = 0.05               # s after a power cycle before the banner
+    settings: dict = field(default_factory=dict)   # extra $$ settings, e.g. {"701": "1"}
+    offset: dict = field(default_factory=dict)
+    misplaced: int = 0
+    max_rx: int = 0
 
     def __post_init__(self) -> None:
         if not self.rx_size:
@@ -118,6 +143,11 @@ class FakeController:
         self._next_exec = 0.0
         self._mpos = dict(self._interp.pos)
         self._frozen_until = 0.0
+        self._power_fail_at = 0.0
+        self._boot_until = 0.0
+        self._disconnect_at = 0.0
+        self._drop_status = 0
+        self.offset = {a: float(self.offset.get(a, 0.0)) for a in self.axes}
         self._thread = threading.Thread(target=self._run, name="fake-grbl", daemon=True)
 
     # ------------------------------------------------------------ lifecycle
@@ -143,6 +173,51 @@ class FakeController:
     def __exit__(self, *exc) -> None:
         self.close()
 
+    def reconnect(self, power_lost: bool) -> "FakeController":
+        """The controller as a host sees it after this one's port went away
+        (``disconnect``): a new port; without a power loss it kept its state
+        and position (Idle, buffered lines executed), with one it restarted
+        (counters at 0 where the machine stands, locked when homing is on).
+        Not started."""
+        phys = self.physical()
+        emu = FakeController(flavour=self.flavour, axes=self.axes, rx_size=self.rx_size,
+                             homing=self.homing, wrapped=self.wrapped,
+                             planner_blocks=self.planner_blocks, block_time=self.block_time,
+                             split=self.split)
+        emu.session = self.session + 1
+        if power_lost:
+            emu.offset = dict(phys)
+        else:
+            emu.offset = dict(self.offset)
+            emu._interp.pos = {a: phys[a] - self.offset[a] for a in self.axes}
+            emu._mpos = dict(emu._interp.pos)
+            emu._state = "Idle"
+        return emu
+
+    def physical(self) -> dict:
+        """Where the machine physically is (counters + offset)."""
+        pos = self.position
+        return {a: pos[a] + self.offset.get(a, 0.0) for a in self.axes}
+
+    def rezero(self) -> None:
+        """The operator sets the work zero at the machine again: the counters
+        agree with the physical position (offset 0)."""
+        phys = self.physical()
+        self._interp.pos = dict(phys)
+        self._mpos = dict(phys)
+        self.offset = {a: 0.0 for a in self.axes}
+
+    def unlock(self) -> None:
+        """The operator unlocks the controller at the machine (``$X`` from a
+        terminal, after clearing the cause of an alarm)."""
+        if self._state == "Alarm":
+            self._state = "Idle"
+
+    def _placed(self, block: str) -> None:
+        if any(abs(v) > 1e-9 for v in self.offset.values()) and \
+                any(a in block for a in "XYZABC"):
+            self.misplaced += 1
+
     @property
     def state(self) -> str:
         return self._state
@@ -164,10 +239,18 @@ class FakeController:
         return "Grbl 1.1h ['$' for help]"
 
     def _send(self, text: str) -> None:
+        self._send_raw((text + "\r\n").encode("ascii"))
+
+    def _send_raw(self, data: bytes) -> None:
         if self._closed:
             return
         try:
-            os.write(self.master, (text + "\r\n").encode("ascii"))
+            if self.split:
+                for i in range(len(data)):
+                    os.write(self.master, data[i:i + 1])
+                    time.sleep(0.0002)
+            else:
+                os.write(self.master, data)
         except OSError:
             self._closed = True
 
@@ -177,6 +260,27 @@ class FakeController:
             if now < self._stall_until:
                 time.sleep(min(0.01, self._stall_until - now))
                 continue
+            if self._boot_until:
+                if now < self._boot_until:
+                    self._discard_input(self._boot_until - now)
+                    continue
+                self._boot_until = 0.0
+                self._discard_input(0.0)
+                self._greet_after_reset()
+            if self._power_fail_at and now >= self._power_fail_at:
+                self._power_fail_at = 0.0
+                self._reset(moving=False, power_cycle=True)
+                continue                     # boots first (see _boot_until)
+            if self._disconnect_at and now >= self._disconnect_at:
+                self._closed = True          # the cable goes; the machine runs on
+                try:
+                    os.close(self.master)
+                except OSError:
+                    pass
+                while self._queue:           # it finishes what it had queued
+                    self._execute_queue()
+                    time.sleep(self.block_time)
+                break
             busy = self._has_line() and not self._state.startswith("Hold")
             wait = max(0.001, min(0.02, self._next_time - now)) if busy else 0.02
             try:
@@ -197,6 +301,7 @@ class FakeController:
                         self._rx.append(b)
                     else:
                         self.overflows += 1
+                self.max_rx = max(self.max_rx, len(self._rx))
             if self._state.startswith("Hold"):
                 continue
             self._execute_queue()
@@ -213,6 +318,15 @@ class FakeController:
                     break
                 if self.line_time > 0:
                     break
+
+    def _discard_input(self, wait: float) -> None:
+        """Read and drop what the host sends while the controller boots."""
+        try:
+            ready, _, _ = select.select([self.master], [], [], max(0.0, min(wait, 0.01)))
+            if ready:
+                os.read(self.master, 4096)
+        except (OSError, ValueError):
+            self._closed = True
 
     def _execute_queue(self) -> None:
         """Run queued motion blocks, one per ``block_time``."""
@@ -231,6 +345,7 @@ class FakeController:
             entry, block, end = self._queue.pop(0)
             entry[3] = True
             self.executed.append(block)
+            self._placed(block)
             self._mpos = end
             self._next_exec = time.monotonic() + self.block_time
 
@@ -265,7 +380,7 @@ class FakeController:
             if f.wait_full and not f.fired and f.at_line == nxt:
                 if not hasattr(f, "_since"):
                     f._since = time.monotonic()
-                full = len(self._rx) >= self.rx_size * 3 // 4
+                full = len(self._rx) >= self.rx_size // 2
                 return not full and time.monotonic() - f._since < 3.0
         return False
 
@@ -281,6 +396,9 @@ class FakeController:
 
     def _realtime(self, b: int) -> None:
         if b == ord("?"):
+            if self._drop_status:
+                self._drop_status -= 1       # line noise ate this poll
+                return
             self._send(self._status())
         elif b == ord("!"):
             self._frozen_until = 0.0
@@ -314,6 +432,9 @@ class FakeController:
             self._interp = self._saved_interp
         self._check = False
         keep = self.position                 # queued moves are dropped, not made
+        if power_cycle:                      # counters restart at 0 where the machine is
+            self.offset = {a: keep[a] + self.offset.get(a, 0.0) for a in self.axes}
+            keep = {a: 0.0 for a in self.axes}
         if not power_cycle:                  # a power cycle says nothing, it reboots
             moving = moving or (bool(self._queue) and not self._state.startswith("Hold"))
         self._queue.clear()
@@ -327,16 +448,43 @@ class FakeController:
             self._state = "Alarm" if self.homing else "Idle"
         elif self._state != "Alarm":
             self._state = "Idle"
+        if power_cycle:
+            # the bootloader runs first: bytes arriving meanwhile are lost, the
+            # banner comes when the firmware starts
+            self._boot_until = time.monotonic() + self.boot_time
+            return
+        self._greet_after_reset()
+
+    def _greet_after_reset(self) -> None:
         self._send(self._banner())
         if self._state == "Alarm":
             self._send("[MSG:'$H'|'$X' to unlock]")
 
     def _fault_for(self, n: int) -> Optional[Fault]:
+        """The fault that decides how line ``n`` is answered.  Faults that only
+        add something (a spurious ``ok``, a dropped ``?``, a power cut or a
+        disconnect some time after the line) fire alongside it, so several
+        faults may share one line."""
+        main = None
         for f in self.faults:
-            if not f.fired and f.at_line == n:
+            if f.fired or f.at_line != n:
+                continue
+            if f.kind == "spurious":
                 f.fired = True
-                return f
-        return None
+                self._send("ok")
+            elif f.kind == "drop_status":
+                f.fired = True
+                self._drop_status = 1
+            elif f.kind == "reset" and f.after > 0:
+                f.fired = True
+                self._power_fail_at = time.monotonic() + f.after
+            elif f.kind == "disconnect" and f.after > 0:
+                f.fired = True
+                self._disconnect_at = time.monotonic() + f.after
+            elif main is None:
+                f.fired = True
+                main = f
+        return main
 
     def _process_one(self) -> None:
         raw = self._pop_line()
@@ -406,9 +554,15 @@ class FakeController:
             self.results.append(entry)
             if entry[3]:
                 self.executed.append(block)
+                self._placed(block)
                 self._mpos = dict(self._interp.pos)
             else:
                 self._queue.append((entry, block, dict(motion[-1].end)))
+        if fault is not None and fault.kind == "drop_ack":
+            return
+        if fault is not None and fault.kind == "garble_reply":
+            self._send_raw(b"o\xffk\r\n")
+            return
         self._send("ok")
 
     def _answer_error(self, code: int, block: str, latch: bool = True) -> None:
@@ -433,7 +587,7 @@ class FakeController:
         elif cmd == "$":
             for k, v in (("13", "0"), ("20", "0"), ("22", "1" if self.homing else "0"),
                          ("32", "0"), ("130", "2500.000"), ("131", "1600.000"),
-                         ("132", "100.000")):
+                         ("132", "100.000"), *sorted(self.settings.items())):
                 self._send(f"${k}={v}")
         elif cmd == "G":
             s = self._interp.state
@@ -462,6 +616,7 @@ class FakeController:
                 return
             self._interp.pos = {a: 0.0 for a in self.axes}
             self._mpos = dict(self._interp.pos)
+            self.offset = {a: 0.0 for a in self.axes}    # at the switches: true zero
             self._state = "Idle"
         else:
             self._send("error:3")

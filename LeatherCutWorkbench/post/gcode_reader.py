@@ -282,7 +282,10 @@ class Interpreter:
                 cy = self.pos["Y"] + ij.get("J", 0.0) * scale
                 r0 = math.hypot(self.pos["X"] - cx, self.pos["Y"] - cy)
                 r1 = math.hypot(target["X"] - cx, target["Y"] - cy)
-                if abs(r0 - r1) > 0.005 and abs(r0 - r1) > 0.001 * r0:
+                # GRBL 1.1 gcode.c: error 33 past 0.5 mm absolute, or past both
+                # 0.005 mm and 0.1 % of the radius
+                dr = abs(r0 - r1)
+                if dr > 0.5 or (dr > 0.005 and dr > 0.001 * r0):
                     raise GcodeError(33, f"radius {r0:.4f} to start, {r1:.4f} to end", line_no)
                 out.append(TraceMove("arc", line_no, dict(self.pos), target, center=(cx, cy),
                                      ccw=motion == "G3", **common))

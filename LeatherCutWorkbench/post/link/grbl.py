@@ -38,7 +38,15 @@ from .journal import Journal
 from .protocol import EEPROM_PATTERN, Reply, parse_reply, position
 
 MODES = ("send-response", "char-count")
-_SYNC = re.compile(r"^(N\d+)?G4P0$")
+_SYNC = re.compile(r"^(N\d+)?G4P0(\.0*)?$")
+_DWELL = re.compile(r"G4P(\d+\.?\d*)")
+
+
+def _dwell(block: str) -> float:
+    """How long (s) the controller may report Idle while ``block`` is unanswered:
+    0.25 s, plus the dwell of a ``G4 P..`` (GRBL reports Idle while dwelling)."""
+    m = _DWELL.search(block)
+    return 0.25 + (float(m.group(1)) if m else 0.0)
 
 
 class LinkError(LeatherCutError):
@@ -72,9 +80,13 @@ class StreamResult:
     block: str = ""
     message: str = ""
     segment: str = ""
-    stopped_safely: bool = False
+    stopped_safely: bool = False      # verified: Idle, knife up, spindle off (status + $G)
     position: Optional[Dict[str, float]] = None   # where the tool stopped (work coordinates)
     position_trusted: bool = False                # reported after a clean stop
+    position_lost: bool = False       # reset we did not ask for, power loss, link lost,
+                                      # ALARM:1/3: a resume must home or confirm the zero
+    verified: Dict = field(default_factory=dict)  # what status reports showed after the stop
+    spurious_acks: int = 0            # answers with no line in flight (discarded)
 
     @property
     def ok(self) -> bool:
@@ -82,6 +94,26 @@ class StreamResult:
 
     def to_json(self) -> Dict:
         return dict(self.__dict__)
+
+    def stop_summary(self) -> str:
+        """What the controller showed after the stop, and what the operator must
+        do -- from status reports, never from what was intended."""
+        v = self.verified
+        if not v:
+            return ("NOT verified stopped: no status report after the stop (link lost); the "
+                    "knife, oscillator and vacuum may still be on: use the machine's E-stop")
+        state = v.get("state") or "no status"
+        knife = v.get("knife", "unknown")
+        where = (f"{v['lift_axis']} {v['lift']:.3f}" if v.get("lift") is not None
+                 else "servo lift")
+        seen = f"controller {state}, knife {knife} ({where}), spindle {v.get('spindle', '?')}"
+        if self.stopped_safely:
+            return f"Stopped safely, verified by status after the stop: {seen}."
+        todo = ("unlock ($X) or home ($H) once the cause is cleared, lift the knife, "
+                "then re-zero" if state == "Alarm" else "lift the knife at the machine")
+        why = "the controller is locked in Alarm: the knife-up lines were not executed; " \
+            if state == "Alarm" else ""
+        return f"NOT stopped safely: {why}status after the stop shows {seen}. At the machine: {todo}."
 
 
 ProgressFn = Callable[[Dict], None]
@@ -122,16 +154,35 @@ class GrblLink:
         self.stop_position: Optional[Dict[str, float]] = None
         self.stop_position_trusted = False
         self.profile_up_lines: List[str] = []       # knife up after a safe stop
+        self.profile = None                         # lift axis / z_up for the stop check
+        self.stop_verified: Dict = {}
+        self.max_in_flight = 0                      # bytes the host counted in flight
+        self._poll_times: Deque[float] = deque()    # '?' written, not yet answered
+        self._status_time = 0.0                     # when the poll of the last report was written
+        self._status_rx_time = 0.0                  # when the last report arrived
+        self._garbled_seen = 0
+        self._stop_lost = False
+        self.homed = False                          # $H done on this connection
 
     # ----------------------------------------------------------- connection
     def open(self) -> "GrblLink":
         import serial
 
+        from .portlock import PortBusy, PortLock
+
+        try:
+            self._lock = PortLock(self.url).acquire()
+        except PortBusy as exc:
+            raise LinkError(exc.message, source=self.url)
+        kw = {} if "://" in self.url else {"exclusive": True}
         try:
             self.ser = serial.serial_for_url(self.url, baudrate=self.baud, timeout=0.02,
-                                             write_timeout=2.0)
+                                             write_timeout=2.0, **kw)
         except (serial.SerialException, ValueError, OSError) as exc:
-            raise LinkError(f"cannot open the port: {exc}", source=self.url)
+            self._lock.release()
+            busy = "busy" in str(exc).lower() or "lock" in str(exc).lower()
+            raise LinkError(("the port is in use by another program: " if busy else
+                             "cannot open the port: ") + str(exc), source=self.url)
         self._reader = threading.Thread(target=self._read_loop, name="grbl-reader", daemon=True)
         self._reader.start()
         return self
@@ -145,6 +196,9 @@ class GrblLink:
                 self.ser.close()
             except Exception:
                 pass
+        lock = getattr(self, "_lock", None)
+        if lock is not None:
+            lock.release()
 
     def __enter__(self) -> "GrblLink":
         return self.open()
@@ -181,8 +235,16 @@ class GrblLink:
             self._acks.put(r)
         elif r.kind == "status":
             if "WCO" in r.fields:
-                self._wco = [float(v) for v in r.fields["WCO"].split(",")]
+                try:
+                    self._wco = [float(v) for v in r.fields["WCO"].split(",")]
+                except ValueError:
+                    pass
+            # the report answers the oldest unanswered '?' (reports are never
+            # pushed unasked); it describes the controller after that write
+            self._status_time = self._poll_times.popleft() if self._poll_times else 0.0
+            self._poll_times.clear()
             self._status = r
+            self._status_rx_time = time.monotonic()
             self._status_seq += 1
         elif r.kind == "alarm":
             self._alarm = r
@@ -207,10 +269,14 @@ class GrblLink:
             raise LinkError(self._lost, source=self.url)
 
     # ------------------------------------------------------------- commands
+    def _poll(self) -> None:
+        self._poll_times.append(time.monotonic())
+        self._write(b"?")
+
     def status(self, timeout: Optional[float] = None) -> Optional[Reply]:
         """Poll ``?`` and wait for the report (None when none arrives)."""
         seq = self._status_seq
-        self._write(b"?")
+        self._poll()
         end = time.monotonic() + (self.link_timeout if timeout is None else timeout)
         while time.monotonic() < end and not self._lost:
             if self._status_seq != seq:
@@ -287,9 +353,11 @@ class GrblLink:
                             f"{self.info.axes} ({self.info.flavour} {self.info.version})",
                             source=self.url)
 
-    def ready_for_job(self, profile: MachineProfile, home: bool = True) -> None:
+    def ready_for_job(self, profile: MachineProfile, home: bool = True,
+                      force_home: bool = False) -> None:
         """Refuse a controller in Door/Hold; home (``$H``) when locked in Alarm and
-        the profile homes, else refuse."""
+        the profile homes, else refuse.  ``force_home``: home even when Idle
+        (a resume after the position was lost)."""
         st = self.status()
         if st is None:
             raise LinkError("no status reply", source=self.url)
@@ -297,13 +365,14 @@ class GrblLink:
         if state.startswith("Door") or state.startswith("Hold") or state in ("Jog", "Home"):
             raise LinkError(f"controller is in {state}; clear it at the machine first",
                             source=self.url)
-        if state == "Alarm":
+        if state == "Alarm" or (force_home and home and profile.homing):
             if not (home and profile.homing):
                 raise LinkError("controller is locked in Alarm: home or unlock it at the machine "
                                 "($H / $X) and re-zero before sending", source=self.url)
             r, _ = self.command("$H", timeout=120.0)
             if r.kind != "ok":
                 raise LinkError(f"homing failed: {r.raw} {r.text}", source=self.url)
+            self.homed = True
         self._alarm = None
 
     # ----------------------------------------------------------- realtime
@@ -334,9 +403,11 @@ class GrblLink:
         if r.kind != "ok" or not any(p.text == "Enabled" for p in push):
             return StreamResult("check-failed", message=f"cannot enter check mode: {r.raw}")
         res = self._stream(job, None, mode, check=True)
-        banners = self._banners
-        r, push = self.command("$C")
-        self._wait_banner(banners)
+        st = self.status()
+        if st is not None and st.state == "Check":     # a safe stop already reset it
+            banners = self._banners
+            r, push = self.command("$C")
+            self._wait_banner(banners)
         self._drain_acks()
         self._alarm = None
         return res
@@ -347,55 +418,84 @@ class GrblLink:
         if mode not in MODES:
             raise LinkError(f"mode must be one of {', '.join(MODES)}")
         self.stop_position, self.stop_position_trusted = None, False
+        self.stop_verified, self._stop_lost = {}, False
         res = self._stream(job, journal, mode, check=False)
         if not res.ok:
             res.position, res.position_trusted = self.stop_position, self.stop_position_trusted
+            res.verified = dict(self.stop_verified)
+            res.position_lost = res.position_lost or self._stop_lost or not res.position_trusted
         if journal is not None:
             journal.event(res.status, **{k: v for k, v in res.to_json().items() if k != "status"})
         return res
 
     def _stream(self, job: SendJob, journal: Optional[Journal], mode: str,
                 check: bool) -> StreamResult:
+        """The streaming loop.  Invariants (docs/LINK.md, "Acknowledgements"):
+
+        * an ``ok``/``error`` answers the oldest line in flight; one with no line
+          in flight is spurious: counted, journaled, discarded -- never more acks
+          than lines sent;
+        * character counting keeps ``bytes in flight + margin <= RX - 1``, the
+          margin being the longest line, so one spurious ``ok`` between two
+          resynchronisations cannot overflow the receive buffer;
+        * nothing is sent after a ``G4 P0`` sync until its ``ok`` *and* a status
+          report received after it shows Idle: then the counters are exactly
+          zero (resynchronised) and the journal's ``sync`` record is proof;
+        * Idle reported twice with lines unanswered (an answer was garbled or
+          lost), a garbled reply, or a status in Alarm are faults -> safe stop;
+        * an unanswered ``?`` is polled again before the link counts as lost."""
         total = len(job.blocks)
-        budget = max(16, self.info.rx_size - 1)
-        pending: Deque[Tuple[int, int]] = deque()
+        longest = max((len(b) + 1 for b in job.blocks), default=0)
+        budget = max(16, self.info.rx_size - 1 - longest)
+        pending: Deque[Tuple[int, int, float]] = deque()
         in_buffer = 0
         sent = acked = 0
+        spurious = 0
         banners = self._banners
         self._alarm = None
         self._abort.clear()
         self._drain_acks()
+        self._garbled_seen = len(self._garbled)
+        self.max_in_flight = 0
         last_poll = 0.0
-        waiting_status_since: Optional[float] = None
+        first_unanswered: Optional[float] = None
+        repolls = 0
         status_seq = self._status_seq
+        sync_wait: Optional[int] = None       # sync line sent, waiting for ok + Idle
+        sync_ok_at: Optional[float] = None    # when its ok arrived
+        idle_mark: Optional[Tuple[float, int]] = None   # (first Idle report time, acks then)
 
         def result(status: str, k: Optional[int] = None, message: str = "", safe: bool = False
                    ) -> StreamResult:
             line = job.index[k] + 1 if k is not None and job.index[k] is not None else None
             return StreamResult(status, acked, total, line, job.blocks[k] if k is not None else "",
-                                message, job.segs[k] if k is not None else "", safe)
+                                message, job.segs[k] if k is not None else "", safe,
+                                spurious_acks=spurious)
 
         def take(r: Reply) -> Optional[StreamResult]:
-            nonlocal acked, in_buffer
+            nonlocal acked, in_buffer, spurious, sync_ok_at
             if not pending:
-                return result("error", None, f"unexpected reply {r.raw!r} with no line in flight")
-            k, n = pending.popleft()
+                spurious += 1
+                if journal is not None:
+                    journal.event("spurious", reply=r.raw, acked=acked)
+                return None
+            k, n, _ = pending.popleft()
             in_buffer -= n
             if r.kind == "ok":
                 acked += 1
                 if journal is not None and job.index[k] is not None:
                     journal.ack(job.index[k], job.segs[k])
-                    if _SYNC.match(job.blocks[k]):
-                        journal.event("sync", i=job.index[k])
+                if k == sync_wait:
+                    sync_ok_at = time.monotonic()
                 self._report(acked, total, job.segs[k], check)
                 return None
             return result("error", k, f"{r.raw}: {r.text}")
 
         def take_received() -> None:
             """Journal the answers that arrived before the reset or the loss of
-            the link (they may acknowledge a sync line: proof of execution);
-            answers after a banner come from the reset controller and
-            acknowledge nothing of this stream."""
+            the link; answers after a banner come from the reset controller and
+            acknowledge nothing of this stream.  (A sync ``ok`` among them is
+            not verified -- no Idle report followed -- so it proves nothing.)"""
             while pending:
                 try:
                     r = self._acks.get_nowait()
@@ -404,47 +504,96 @@ class GrblLink:
                 if r.epoch == banners:
                     take(r)
 
+        def head() -> Optional[int]:
+            return pending[0][0] if pending else (sent - 1 if sent else None)
+
+        def stop(status: str, message: str, k: Optional[int], **kw) -> StreamResult:
+            safe = self._stop_safely(take, **kw)
+            res = result(status, k, message, safe)
+            res.acked, res.spurious_acks = acked, spurious
+            return res
+
         while True:
             now = time.monotonic()
             if self._lost:
                 take_received()
-                return result("lost", pending[0][0] if pending else None,
-                              f"link lost: {self._lost}; job state unknown")
+                res = result("lost", head(), f"link lost: {self._lost}; job state unknown")
+                res.position_lost = True
+                return res
             if self._alarm is not None:
                 a = self._alarm
-                k = pending[0][0] if pending else None
-                safe = self._stop_safely(lambda r: take(r), trust_alarm=a.code == 2)
-                return result("alarm", k, f"{a.raw}: {a.text}", safe)
+                return stop("alarm", f"{a.raw}: {a.text}", head(), trust_alarm=a.code == 2,
+                            lost=a.code in (1, 3))
             if self._banners != banners:
                 take_received()
-                k = pending[0][0] if pending else None
+                k = head()
                 safe = self._after_reset(spontaneous=True)
-                return result("reset", k, "the controller reset itself (banner received): lines "
-                              "in flight are lost, position may be lost", safe)
+                res = result("reset", k, "the controller reset itself (banner received): lines "
+                             "in flight are lost, position may be lost", safe)
+                res.position_lost = True
+                return res
+            if len(self._garbled) > self._garbled_seen:
+                bad = self._garbled[self._garbled_seen]
+                return stop("check-failed" if check else "garbled",
+                            f"garbled reply {bad!r} from the controller: it may have "
+                            "been an ok or an error, the stream cannot go on", head())
             if self._abort.is_set():
-                k = pending[0][0] if pending else None
-                safe = self._stop_safely(lambda r: take(r))
-                return result("aborted", k, "stopped by the operator", safe)
-            # link supervision: one outstanding status poll at a time
+                return stop("aborted", "stopped by the operator", head())
+            # link supervision: re-poll an unanswered '?', lost only after link_timeout
             if self._status_seq != status_seq:
                 status_seq = self._status_seq
-                waiting_status_since = None
-            if waiting_status_since is not None and now - waiting_status_since > self.link_timeout:
-                k = pending[0][0] if pending else None
-                safe = self._stop_safely(lambda r: take(r), quick=True)
-                status = "stalled" if safe else "lost"
-                return result(status, k, f"no status reply for {self.link_timeout:g} s: link lost"
-                              + ("; the controller answered the reset" if safe else
-                                 "; job state unknown"), safe)
-            if waiting_status_since is None and now - last_poll >= self.status_interval:
+                first_unanswered, repolls = None, 0
+                st = self._status
+                if st.state == "Alarm" and not check:
+                    return stop("alarm", "the controller reports Alarm (its ALARM message was "
+                                "not received)", head(), lost=True)
+                if sync_wait is not None and sync_ok_at is not None and \
+                        self._status_rx_time > sync_ok_at and st.state in ("Idle", "Check"):
+                    take_received()          # the sync's own ok, when an early one was spurious
+                    if not pending:
+                        if journal is not None and job.index[sync_wait] is not None:
+                            journal.event("sync", i=job.index[sync_wait])
+                        sync_wait, sync_ok_at, in_buffer = None, None, 0
+                if pending and st.state == ("Check" if check else "Idle") \
+                        and self._status_time > pending[0][2]:
+                    if idle_mark is None or idle_mark[1] != acked:
+                        idle_mark = (self._status_time, acked)
+                    elif self._status_time - idle_mark[0] >= _dwell(job.blocks[pending[0][0]]):
+                        return stop("check-failed" if check else "unanswered",
+                                    f"the controller is {st.state} but {len(pending)} "
+                                    "line(s) were never answered (an ok or error was lost or "
+                                    "garbled)", pending[0][0])
+                else:
+                    idle_mark = None
+            if first_unanswered is not None:
+                waited = now - first_unanswered
+                if waited > self.link_timeout and repolls >= 2:
+                    k = head()
+                    safe = self._stop_safely(take, quick=True)
+                    res = result("stalled" if self.stop_verified else "lost", k,
+                                 f"no status reply for {waited:.1f} s ({repolls + 1} polls): "
+                                 "link lost" + ("; the controller answered after the reset"
+                                                if self.stop_verified else "; job state unknown"),
+                                 safe)
+                    res.acked, res.spurious_acks = acked, spurious
+                    return res
+                if waited > self.link_timeout * (repolls + 1) / 3.0:
+                    try:
+                        self._poll()
+                        repolls += 1
+                    except LinkError:
+                        continue
+            elif now - last_poll >= self.status_interval or (
+                    sync_ok_at is not None and last_poll < sync_ok_at):
                 try:
-                    self._write(b"?")
+                    self._poll()
                 except LinkError:
                     continue
                 last_poll = now
-                waiting_status_since = now
+                first_unanswered = now
             # send as much as the mode allows
-            while sent < total and not self._paused.is_set():
+            while (sent < total and not self._paused.is_set() and sync_wait is None
+                   and self._banners == banners and self._alarm is None):
                 block = job.blocks[sent]
                 n = len(block) + 1
                 single = mode == "send-response" or bool(EEPROM_PATTERN.match(block))
@@ -455,15 +604,22 @@ class GrblLink:
                     self._write(block.encode("ascii") + b"\n")
                 except LinkError:
                     break
-                pending.append((sent, n))
+                pending.append((sent, n, time.monotonic()))
                 in_buffer += n
+                self.max_in_flight = max(self.max_in_flight, in_buffer)
+                if _SYNC.match(block):
+                    sync_wait, sync_ok_at = sent, None
                 sent += 1
-            if acked == total:
-                return result("check-ok" if check else "done")
+            if acked == total and sync_wait is None and not pending:
+                res = result("check-ok" if check else "done")
+                res.spurious_acks = spurious
+                return res
             try:
                 r = self._acks.get(timeout=0.005)
             except queue.Empty:
                 continue
+            if r.epoch != banners:
+                continue                      # handled as a reset above
             bad = take(r)
             if bad is not None:
                 if check:
@@ -473,20 +629,20 @@ class GrblLink:
                     # ALARM arrived first: later lines answer error:9 and the
                     # alarmed line has no answer of its own -- report the alarm
                     a = self._alarm
-                    bad.status, bad.message = "alarm", f"{a.raw}: {a.text}"
-                    bad.stopped_safely = self._stop_safely(lambda r: take(r),
-                                                           trust_alarm=a.code == 2)
-                    bad.acked = acked
-                    return bad
+                    res = stop("alarm", f"{a.raw}: {a.text}", None,
+                               trust_alarm=a.code == 2, lost=a.code in (1, 3))
+                    res.line, res.block, res.segment = bad.line, bad.block, bad.segment
+                    return res
                 if self._banners != banners:
                     bad.status = "reset"
                     bad.message = ("the controller reset itself (banner received): lines in "
                                    "flight are lost, position may be lost")
                     bad.stopped_safely = self._after_reset(spontaneous=True)
+                    bad.position_lost = True
                     return bad
                 # any error is fatal to the job: stop, keep taking late acks
-                bad.stopped_safely = self._stop_safely(lambda r: take(r))
-                bad.acked = acked
+                safe = self._stop_safely(take)
+                bad.stopped_safely, bad.acked, bad.spurious_acks = safe, acked, spurious
                 return bad
 
     def _report(self, acked: int, total: int, seg: str, check: bool) -> None:
@@ -505,10 +661,14 @@ class GrblLink:
         return False
 
     def _stop_safely(self, take: Callable[[Reply], Optional[StreamResult]],
-                     quick: bool = False, trust_alarm: bool = False) -> bool:
-        """Feed hold, wait Hold:0/Idle, soft reset, wait banner, knife up.
-        Acks that arrive meanwhile are still journaled (``take``).  Returns True
-        when the controller confirmed the reset."""
+                     quick: bool = False, trust_alarm: bool = False, lost: bool = False) -> bool:
+        """Feed hold, wait Hold:0/Idle, soft reset, wait banner, knife up, then
+        *verify* (status report and ``$G``).  Acks that arrive meanwhile are
+        still journaled (``take``).  Returns True only when the reports after
+        the stop show the controller Idle, the knife up and the spindle off;
+        :attr:`stop_verified` holds what they showed."""
+        self.stop_verified = {}
+        self._stop_lost = lost
         if self._lost:
             return False
 
@@ -530,6 +690,7 @@ class GrblLink:
                     break
             drain()
             banners = self._banners
+            self._alarm = None
             self._write(b"\x18")
             wait = self.reset_timeout * (3 if quick else 1)
             end = time.monotonic() + wait
@@ -542,38 +703,88 @@ class GrblLink:
             if not got:
                 return False
             drain()         # oks that came before the banner: executed before the reset
-            self._after_reset(trust_alarm=trust_alarm)
-            return True
+            if self._alarm is not None and self._alarm.code == 3:
+                self._stop_lost = True      # reset while moving: position lost
+            return self._after_reset(trust_alarm=trust_alarm)
         except LinkError:
             return False
 
     def _after_reset(self, spontaneous: bool = False, trust_alarm: bool = False) -> bool:
         """After a banner: forget lines in flight, note where the tool stopped
         (trusted when the controller is Idle -- it kept its position -- or after
-        a soft-limit alarm, never after a reset we did not ask for) and lift the
-        knife when the controller accepts G-code.  True when lifted."""
+        a soft-limit alarm, never after a reset we did not ask for), lift the
+        knife when the controller accepts G-code, then verify the result from a
+        status report and ``$G``.  True only when verified Idle, knife up and
+        spindle off."""
+        self.stop_verified = {}
         try:
             time.sleep(0.05)          # let the banner's follow-up messages arrive
             self._drain_acks()        # lines in flight were flushed by the reset
+            if self._alarm is not None and self._alarm.code == 3:
+                self._stop_lost = True
             self._alarm = None
             st = self.status(timeout=1.0)
             if st is not None:
                 pos = position(st, self._wco)
                 if pos is not None:
                     self.stop_position = dict(zip(self.info.axes, pos))
-                    self.stop_position_trusted = not spontaneous and (
+                    self.stop_position_trusted = not spontaneous and not self._stop_lost and (
                         st.state == "Idle" or (st.state == "Alarm" and trust_alarm))
-            if st is None or st.state != "Idle":
-                return False
-            # knife up, then G4 P0: its ok comes once the lift has been made
-            for line in list(self.profile_up_lines) + ["G4 P0"]:
-                r, _ = self.command(strip_line(line), timeout=10.0)
-                if r.kind != "ok":
-                    return False
-            return True
+            lifted = False
+            if st is not None and st.state == "Idle":
+                # knife up, then G4 P0: its ok comes once the lift has been made
+                lifted = True
+                for line in list(self.profile_up_lines) + ["G4 P0"]:
+                    r, _ = self.command(strip_line(line), timeout=10.0)
+                    if r.kind != "ok":
+                        lifted = False
+                        break
+            return self._verify_stop(lifted)
         except LinkError:
             return False
 
+    def _verify_stop(self, lifted: bool) -> bool:
+        """Read back the state after a stop: a status report (state, lift axis
+        position) and ``$G`` (spindle, coolant).  Fills :attr:`stop_verified`."""
+        st = self.status(timeout=1.0)
+        if st is None:
+            self.stop_verified = {"state": None, "knife": "unknown"}
+            return False
+        v: Dict = {"state": st.state, "knife_up_sent": lifted, "spindle": "?", "coolant": "?"}
+        pos = position(st, self._wco)
+        prof = self.profile
+        lift = prof.lift_axis if prof is not None else ""
+        if pos is not None:
+            here = dict(zip(self.info.axes, pos))
+            v["position"] = here
+            if lift and lift in here:
+                v["lift_axis"], v["lift"] = lift, here[lift]
+        try:
+            r, push = self.command("$G", timeout=2.0)
+            for p in push:
+                if "GC" in p.fields:
+                    words = p.fields["GC"].split()
+                    v["spindle"] = next((w for w in words if w in ("M3", "M4", "M5")), "?")
+                    v["coolant"] = " ".join(w for w in words if w in ("M7", "M8", "M9")) or "?"
+        except LinkError:
+            pass
+        if lift and v.get("lift") is not None:
+            up = v["lift"] >= prof.z_up - 0.01
+            v["knife"] = "up" if up else "down"
+        elif lift:
+            v["knife"] = "unknown"
+        else:                              # servo / spindle lift: the spindle word is the lift
+            v["knife"] = "up" if lifted and v["spindle"] == "M5" else "unknown"
+        self.stop_verified = v
+        return st.state == "Idle" and v["knife"] == "up" and v["spindle"] == "M5"
+
     def use_profile(self, profile: MachineProfile) -> None:
-        """Lift the knife with this profile's lines after a safe stop."""
+        """Lift the knife with this profile's lines after a safe stop (and check
+        the lift axis against its ``z_up``)."""
         self.profile_up_lines = knife_up_lines(profile)
+        self.profile = profile
+
+    @property
+    def feed_linear_only(self) -> bool:
+        """grblHAL ``$701=1``: F applies to the linear axes only (read by greet)."""
+        return self.info.settings.get("$701", "0").strip() in ("1", "1.0")

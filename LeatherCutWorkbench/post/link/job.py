@@ -82,12 +82,23 @@ def job_from_program(name: str, prog: Program) -> SendJob:
     return job_from_lines(name, prog.lines, prog.segs, prog.segment_ids)
 
 
-def job_from_file(path: str) -> SendJob:
+def job_from_file(path: str, allow_unsealed: bool = False) -> SendJob:
     """Read a ``.nc``/``.ngc``/``.gcode`` file written by ``leathercut post``
-    (or any G-code: without ``(seg ..)`` comments it is one unnamed segment per line)."""
+    (or any G-code: without ``(seg ..)`` comments it is one unnamed segment per line).
+
+    The file's end marker and checksum are verified first
+    (:func:`..jobfile.check_sealed`): a truncated or edited job is refused.
+    ``allow_unsealed`` accepts a hand-written file without a marker (never one
+    that looks like a LeatherCut job)."""
+    from ..jobfile import check_sealed
+
     try:
-        with open(path, encoding="ascii", errors="strict") as fh:
-            lines = fh.read().splitlines()
+        if not os.path.isfile(path):
+            raise InputError("not a regular file (a G-code job must be a file)", source=path)
+        with open(path, "rb") as fh:
+            data = fh.read()
+        check_sealed(data, path, allow_unsealed)
+        lines = data.decode("ascii", errors="strict").splitlines()
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(f"cannot read G-code file: {exc}", source=path)
     segs, order = segment_map(lines)

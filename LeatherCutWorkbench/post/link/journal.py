@@ -14,6 +14,14 @@ every non-ack record and at least every ``fsync_interval`` seconds for acks
 streaming on slow disks).  The journal is never rewritten: a resumed run
 appends to it.
 
+**Runs.**  Every fresh send of a job writes a new ``job`` record with a new
+``run`` id: it starts a new *pass* over the job (e.g. the next hide), and a
+pass never inherits the progress of an earlier one.  A resume writes a
+``resume`` record naming the pass it continues (``of``) and its own run id.
+:func:`load_journal` reasons only over the last pass: its first run and its
+resumes.  A ``zero`` record says how the work zero was re-established before
+a resume after a lost position (``homed`` or ``confirmed``).
+
 The job record also holds the program itself and the machine's axes, so a
 journal alone says what was executed (``load_journal``): acknowledged is not
 executed -- GRBL acknowledges a line when it enters the planner -- so
@@ -30,11 +38,12 @@ import hashlib
 import json
 import os
 import time
+import uuid
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Set
 
 from ...core.errors import InputError
-from .recovery import STOP_EVENTS, executed_lines
+from .recovery import STOP_EVENTS, executed_lines, tool_line
 
 
 def job_digest(lines: Sequence[str]) -> str:
@@ -57,34 +66,50 @@ class Journal:
         except OSError as exc:
             raise InputError(f"cannot write the job journal: {exc.strerror}", source=path)
         self._last_sync = time.monotonic()
+        self.run_id = ""
+        self.pass_id = ""
 
     @classmethod
-    def open(cls, path: str, job, mode: str, profile=None) -> "Journal":
+    def open(cls, path: str, job, mode: str, profile=None,
+             resume_seg: Optional[str] = None) -> "Journal":
         """Open ``path`` for appending the journal of ``job`` (a
-        :class:`~.job.SendJob`); writes a ``job`` record unless the file already
-        journals this very job (same digest), else refuses.  ``profile`` (the
-        machine profile) tells the interpreter the axes and a wrapped axis; by
-        default every axis letter is accepted and none wraps."""
+        :class:`~.job.SendJob`).  A fresh send (``resume_seg`` None) writes a new
+        ``job`` record: a new pass that never inherits an earlier pass's
+        progress.  A resume (``resume_seg`` = the segment it starts at) needs
+        the journal of this very job and writes a ``resume`` record continuing
+        its last pass.  A journal of another job (different digest) is refused.
+        ``profile`` (the machine profile) tells the interpreter the axes and a
+        wrapped axis; by default every axis letter is accepted and none wraps."""
         lines = job.source
         segs = [""] * len(lines)          # segment of every line that is sent
         for k, i in enumerate(job.index):
             if i is not None:
                 segs[i] = job.segs[k]
         digest = job_digest(lines)
+        state = None
         if os.path.exists(path) and os.path.getsize(path) > 0:
             state = load_journal(path)
             if state.digest != digest:
                 raise InputError("the journal belongs to another job (different G-code); "
                                  "choose a new --journal file", source=path)
-            j = cls(path)
-            return j
         j = cls(path)
+        run = uuid.uuid4().hex[:12]
+        j.run_id = run
+        if resume_seg is not None:
+            if state is None:
+                j.close()
+                raise InputError("no journal to resume from", source=path)
+            j.pass_id = state.pass_id
+            j.write({"e": "resume", "seg": resume_seg, "run": run, "of": state.pass_id,
+                     "time": time.time()}, sync=True)
+            return j
         machine = {"axes": "XYZABC", "wrapped": "", "turn": 360.0, "rotary": ""}
         if profile is not None:
             machine = {"axes": profile.axes, "rotary": profile.rotary_axis,
                        "wrapped": profile.rotary_axis if profile.rotary_wrap else "",
                        "turn": profile.units_per_turn if profile.rotary_wrap else 360.0}
-        j.write({"e": "job", "job": job.name, "sha256": digest, "lines": len(lines),
+        j.pass_id = run
+        j.write({"e": "job", "run": run, "job": job.name, "sha256": digest, "lines": len(lines),
                  "segs": segs, "segments": list(job.segment_ids), "mode": mode,
                  "source": list(lines), "machine": machine, "time": time.time()}, sync=True)
         return j
@@ -102,6 +127,12 @@ class Journal:
 
     def event(self, kind: str, **data) -> None:
         self.write({"e": kind, "time": time.time(), **data}, sync=True)
+
+    def __enter__(self) -> "Journal":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
 
     def close(self) -> None:
         if not self._fh.closed:
@@ -128,6 +159,23 @@ class JournalState:
     runs: List[Dict] = field(default_factory=list)         # {"acked": [...], "end": event}
     _executed: Optional[Set[int]] = None
     bases: List[str] = field(default_factory=list)
+    pass_id: str = ""                                      # run id of the pass's first run
+    passes: int = 0                                        # fresh sends in the journal
+    run_executed: List[Set[int]] = field(default_factory=list)
+
+    @property
+    def last_end(self) -> Optional[Dict]:
+        """How the last run of the pass ended (its stop or done record)."""
+        return self.runs[-1]["end"] if self.runs else None
+
+    def position_lost(self) -> bool:
+        """True when the last run ended with the machine position lost (reset we
+        did not ask for, power cycle, disconnect, ALARM:1/3, or no end record
+        at all): a resume must then home or have the work zero confirmed."""
+        end = self.last_end
+        if not self.runs or end is None:       # LeatherCut or the PC died mid-run
+            return bool(self.runs and self.runs[-1]["acked"])
+        return bool(end.get("position_lost"))
 
     @property
     def acked_set(self) -> set:
@@ -139,12 +187,27 @@ class JournalState:
         if self._executed is None:
             if self.source:
                 m = self.machine
-                self._executed, self.bases = executed_lines(
+                self._executed, self.bases, self.run_executed = executed_lines(
                     self.runs, self.source, m.get("axes", "XYZABC"), m.get("wrapped", ""),
                     float(m.get("turn", 360.0)), m.get("rotary", ""))
             else:
                 self._executed, self.bases = self.acked_set, ["acks"] * len(self.runs)
+                self.run_executed = [set(r["acked"]) for r in self.runs]
         return self._executed
+
+    def tool_at(self) -> Optional[Dict]:
+        """Where the tool is after the last run's stop: ``{"line": 1-based line,
+        "block", "segment", "how": on | after}`` (on = the move it stopped on,
+        from the reported position; after = the last line known executed)."""
+        self.executed()
+        if not self.runs or not self.source:
+            return None
+        got = tool_line(self.runs[-1], self.run_executed[-1], self.bases[-1], self.source)
+        if got is None:
+            return None
+        i, how = got
+        return {"line": i + 1, "block": self.source[i].strip(),
+                "segment": self.segs[i] if i < len(self.segs) else "", "how": how}
 
     def _segments_with(self, have: Set[int]) -> List[str]:
         lines_of: Dict[str, List[int]] = {}
@@ -176,7 +239,9 @@ class JournalState:
 
 
 def load_journal(path: str) -> JournalState:
-    """Read a journal; a truncated last record (crash mid-write) is ignored."""
+    """Read a journal; a truncated last record (crash mid-write) is ignored.
+    The state describes the journal's last pass (its last fresh send and the
+    resumes of it): earlier passes are history, never progress."""
     st = JournalState(path)
     try:
         fh = open(path, encoding="utf-8")
@@ -188,31 +253,50 @@ def load_journal(path: str) -> JournalState:
                 rec = json.loads(line)
             except json.JSONDecodeError:
                 continue              # torn final write
+            if not isinstance(rec, dict):
+                continue
             e = rec.get("e")
             if e == "job":
                 if st.digest and rec.get("sha256") != st.digest:
                     raise InputError(f"journal holds two different jobs (line {n})", source=path)
-                if not st.digest:
-                    st.job = rec.get("job", "")
-                    st.digest = rec.get("sha256", "")
-                    st.lines = rec.get("lines", 0)
-                    st.segs = rec.get("segs", [])
-                    st.segments = rec.get("segments", [])
-                    st.source = rec.get("source", [])
-                    st.machine = rec.get("machine", {})
-                    st.runs.append({"acked": [], "end": None})
+                # a fresh send: a new pass, nothing of the earlier one carries over
+                st.job = rec.get("job", "")
+                st.digest = rec.get("sha256", "")
+                st.lines = rec.get("lines", 0)
+                st.segs = rec.get("segs", [])
+                st.segments = rec.get("segments", [])
+                st.source = rec.get("source", [])
+                st.machine = rec.get("machine", {})
+                st.pass_id = rec.get("run", f"line{n}")
+                st.passes += 1
+                st.acked, st.events, st.last_sync = [], [], None
+                st.runs = [{"acked": [], "end": None, "syncs": [], "run": st.pass_id}]
             elif e == "ack":
                 st.acked.append(rec["i"])
                 if st.runs and st.runs[-1]["end"] is not None:
-                    st.runs.append({"acked": [], "end": None})   # a resume without its event
+                    # acks after a stop without a resume record (old journals)
+                    st.runs.append({"acked": [], "end": None, "syncs": []})
                 if st.runs:
                     st.runs[-1]["acked"].append(rec["i"])
             else:
+                if e == "resume" and rec.get("of") not in (None, st.pass_id):
+                    continue          # resumes an earlier pass: not this pass's progress
                 st.events.append(rec)
                 if e == "sync":
                     st.last_sync = rec.get("i")
+                    if st.runs:
+                        st.runs[-1]["syncs"].append(rec.get("i"))
                 elif e == "resume":
-                    st.runs.append({"acked": [], "end": None})
+                    st.runs.append({"acked": [], "end": None, "syncs": [],
+                                    "run": rec.get("run", "")})
+                elif e == "zero" and st.runs:
+                    st.runs[-1]["zeroed"] = rec.get("how", "")
+                elif e == "reconnect" and st.runs and st.runs[-1]["end"] is not None:
+                    # the controller kept power and position over a lost link and
+                    # reported where it stopped: evidence for the interrupted run
+                    st.runs[-1]["end"] = {**st.runs[-1]["end"], "position": rec.get("position"),
+                                          "position_trusted": True, "position_lost": False,
+                                          "reconnect": True}
                 elif (e in STOP_EVENTS or e == "done") and st.runs:
                     st.runs[-1]["end"] = rec
     if not st.digest:

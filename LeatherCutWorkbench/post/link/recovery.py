@@ -14,9 +14,10 @@ module decides what was executed, with the best evidence the journal holds:
    everything after it were not (a move the tool stopped at the very end of
    counts as executed);
 3. ``sync``: otherwise (power loss, disconnect, reset while moving) only what
-   a synchronising line proves: GRBL acknowledges ``G4`` and the spindle and
-   coolant words ``M3 M4 M5 M7 M8 M9`` only after the planner ran empty, so
-   every acknowledged line up to the last acknowledged one of those was
+   a *verified* sync proves: GRBL answers ``G4 P0`` only after the planner ran
+   empty, and the link sends nothing after it until a status report received
+   after that ``ok`` shows the controller ``Idle`` (a spurious or early ``ok``
+   cannot fake it); every acknowledged line up to the last verified sync was
    executed.  With the item syncs of the shipped profiles the item being cut
    may then be cut again from its start (its slit is retraced), the price of
    not losing anything; with the profile's ``sync_every_segment`` each
@@ -35,7 +36,8 @@ from typing import Dict, List, Optional, Sequence, Set, Tuple
 from ..gcode_reader import GcodeError, Interpreter, TraceMove, strip_line
 
 SYNC_LINE = re.compile(r"^(N\d+)?(G4P|M[345789](?!\d))")
-STOP_EVENTS = ("error", "alarm", "reset", "stalled", "lost", "aborted", "check-failed")
+STOP_EVENTS = ("error", "alarm", "reset", "stalled", "lost", "aborted", "check-failed",
+               "garbled", "unanswered")
 
 
 def trace_run(source: Sequence[str], acked: Set[int], axes: str, wrapped: str, turn: float
@@ -116,32 +118,61 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
     end = run.get("end")
     if end is not None and end.get("e") == "done":
         return acked_set, "done"
-    syncs = [i for i in acked if SYNC_LINE.match(strip_line(source[i]))]
+    # verified syncs: the ok of a G4 P0 followed by a status report showing the
+    # controller Idle (so the ok was not a spurious one); old journals without
+    # "syncs" fall back to the acknowledged synchronising lines
+    if "syncs" in run:
+        syncs = [i for i in run["syncs"] if i in acked_set]
+    else:
+        syncs = [i for i in acked if SYNC_LINE.match(strip_line(source[i]))]
     last_sync = max(syncs) if syncs else -1
     pos = end.get("position") if end else None
     if pos and end.get("position_trusted"):
         motion = trace_run(source, acked_set, axes, wrapped, turn)
+        # a position read on reconnect after a lost link counts only at the end
+        # of the last acknowledged move (the controller ran on to the end of its
+        # buffer; anywhere else it was moved since, e.g. jogged)
+        last = max(motion) if motion else None
         for i in sorted(motion):
-            if i <= last_sync:
+            if i <= last_sync or (end.get("reconnect") and i != last):
                 continue
             for k, mv in enumerate(motion[i]):
                 t = locate(mv, pos, tol)
                 if t is None:
                     continue
                 at_end = t >= 1.0 - 1e-9 and k == len(motion[i]) - 1
+                if end.get("reconnect") and not at_end:
+                    continue
                 stop = i + 1 if at_end else i
+                run["tool"] = (i, "after" if at_end else "on")
                 return {j for j in acked_set if j < stop}, "position"
     return {j for j in acked_set if j <= last_sync}, "sync"
 
 
 def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapped: str,
-                   turn: float, rotary: str) -> Tuple[Set[int], List[str]]:
-    """Union of the executed lines of every run, and the basis of each run."""
+                   turn: float, rotary: str) -> Tuple[Set[int], List[str], List[Set[int]]]:
+    """Union of the executed lines of every run, the basis of each run and each
+    run's own executed lines."""
     tol = _tolerances(axes, rotary)
     done: Set[int] = set()
     bases: List[str] = []
+    per_run: List[Set[int]] = []
     for run in runs:
         lines, basis = executed_in_run(run, source, axes, wrapped, turn, tol)
         done |= lines
         bases.append(basis)
-    return done, bases
+        per_run.append(lines)
+    return done, bases, per_run
+
+
+def tool_line(run: Dict, executed: Set[int], basis: str, source: Sequence[str]
+              ) -> Optional[Tuple[int, str]]:
+    """Where the tool is after the run's stop, as (0-based line, how known):
+    with a reported position the move it stopped on ("on") or the move it
+    stopped at the end of ("after"), as :func:`executed_in_run` located it;
+    otherwise the last line known executed ("after")."""
+    if basis == "position" and run.get("tool"):
+        return run["tool"]
+    acked = set(run["acked"])
+    mine = sorted(i for i in executed if i in acked)
+    return (mine[-1], "after") if mine else None
