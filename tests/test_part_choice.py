@@ -1,4 +1,10 @@
 """core.part_choice: which parts go to the cut and how many (plain pytest, no FreeCAD)."""
+import os
+
+import pytest
+
+from conftest import SAMPLES_DIR
+from LeatherCutWorkbench.core.errors import InputError
 
 from LeatherCutWorkbench.core.geometry import LineSeg
 from LeatherCutWorkbench.core.model import Contour, Part, Recognition
@@ -64,3 +70,41 @@ def test_block_names_from_the_edges_on_the_outline():
     names = block_names(Drawing("x.dxf", edges=edges), parts)
     assert names == {"P1": "FRONT"}        # P2 drawn in model space, P3 has its AAMA name
     assert display_name(parts[0], names["P1"]) == "block FRONT (P1)"
+
+
+# -- the same choices on the command line and in core.job (one source of truth) --
+
+def _aama_recognition(**kw):
+    from LeatherCutWorkbench.core.job import JobOptions, load_and_recognise
+    path = os.path.join(SAMPLES_DIR, "GMX1016S18_AAMA.DXF")
+    return load_and_recognise(path, JobOptions(**kw))[1]
+
+
+def test_job_cuts_only_the_sample_size_of_a_graded_set_by_default():
+    rec = _aama_recognition()
+    cut = rec.active_parts()
+    assert {p.size for p in cut} == {"50"}                  # the file's Sample Size
+    assert len({p.size for p in rec.parts}) == 15           # every size is still recognised
+
+
+def test_job_sizes_and_quantities_choose_the_parts():
+    rec = _aama_recognition(sizes=["42", "44"])
+    assert {p.size for p in rec.active_parts()} == {"42", "44"}
+    every = _aama_recognition(sizes=["all"])
+    assert len(every.active_parts()) == len(every.parts) == 150
+    first = every.parts[0].id
+    rec = _aama_recognition(sizes=["all"], quantities={first: 3})
+    assert next(p for p in rec.parts if p.id == first).quantity == 3
+    with pytest.raises(InputError, match="size 99 is not in the drawing"):
+        _aama_recognition(sizes=["99"])
+    with pytest.raises(InputError, match="names part P9999"):
+        _aama_recognition(quantities={"P9999": 2})
+
+
+def test_workbench_choices_replace_the_defaults():
+    every = _aama_recognition(sizes=["all"])
+    keep = every.parts[0].id
+    choices = {p.id: PartChoice(include=p.id == keep, quantity=2) for p in every.parts}
+    rec = _aama_recognition(part_choices=choices)
+    assert [(p.id, p.quantity) for p in rec.active_parts()] == [(keep, 2)]
+    assert len(_aama_recognition(part_choices={}).active_parts()) == 150   # {} = as recognised

@@ -50,6 +50,23 @@ def _flag_ids(value: str) -> FrozenSet[str]:
     return frozenset(out)
 
 
+def _size_list(text: str) -> List[str]:
+    sizes = [t.strip() for t in text.split(",") if t.strip()]
+    if not sizes:
+        raise argparse.ArgumentTypeError(f"no size given: {text!r}")
+    return sizes
+
+
+def _quantities(text: str) -> Dict[str, int]:
+    out: Dict[str, int] = {}
+    for item in (t.strip() for t in text.split(",")):
+        pid, eq, n = item.partition("=")
+        if not eq or not pid.strip() or not n.strip().isdigit() or int(n) < 1:
+            raise argparse.ArgumentTypeError(f"expected PART=N with N >= 1, e.g. P3=2: {item!r}")
+        out[pid.strip()] = int(n)
+    return out
+
+
 def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     """Recognition options; ``--include``/``--exclude`` become
     ``--recognise-include``/``--recognise-exclude`` on later verbs (not primary)."""
@@ -74,6 +91,12 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                                        "flagged over-recognised (e.g. C5,C9)")
     g.add_argument(f"--{pre}exclude", dest="recognise_exclude", type=_ids, default=frozenset(),
                    metavar="IDS", help="comma-separated contour/part ids not to cut")
+    g.add_argument("--sizes", dest="recognise_sizes", type=_size_list, default=None,
+                   metavar="SIZES", help="graded AAMA / ASTM sets: comma-separated sizes to cut, or "
+                                         "'all' (default: the file's sample size, else its first size)")
+    g.add_argument("--quantity", dest="recognise_quantities", type=_quantities, default=None,
+                   metavar="PART=N,...", help="copies of a part to nest, e.g. P3=2,P5=4 "
+                                              "(default: the quantity the drawing states, else 1)")
     g.add_argument("--no-unfold", dest="recognise_unfold", action="store_false",
                    help="keep pattern pieces drawn as a half against a fold (mirror) line "
                         "as drawn instead of unfolding them into the whole piece")
@@ -150,7 +173,7 @@ def recognition_json(rec: Recognition, path: str) -> Dict[str, Any]:
     parts = []
     for p in rec.parts:
         parts.append({
-            "id": p.id, "name": p.name, "excluded": p.excluded, "quantity": p.quantity,
+            "id": p.id, "name": p.name, "size": p.size, "excluded": p.excluded, "quantity": p.quantity,
             "rotations": p.rotations, "parent": p.parent_id,
             "net_area": _r(_area(p.outer) - sum(_area(h) for h in p.holes)),
             "outer_length": _r(p.outer.length),

@@ -63,6 +63,8 @@ def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> J
         from ..core.layout_json import read_layout_json
         opts.layout = read_layout_json(args.job_layout_in)
     opts.allow_invalid_layout = bool(getattr(args, "job_allow_invalid_layout", False))
+    opts.sizes = getattr(args, "recognise_sizes", None)
+    opts.quantities = getattr(args, "recognise_quantities", None)
     opts.log = _warn
     return opts
 

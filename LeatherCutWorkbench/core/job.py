@@ -42,6 +42,13 @@ class JobOptions:
     layout: Optional[Layout] = None
     allow_invalid_layout: bool = False
     log: Optional[Callable[[str], None]] = None
+    #: part id -> PartChoice (include, quantity; :mod:`core.part_choice`); None =
+    #: the defaults (a graded AAMA / ASTM set cuts only its sample size), {} = as recognised
+    part_choices: Optional[Dict[str, Any]] = None
+    #: with the defaults: the pattern sizes to cut (["all"] = every size)
+    sizes: Optional[List[str]] = None
+    #: with the defaults: part id -> quantity to cut (copies when nested)
+    quantities: Optional[Dict[str, int]] = None
 
 
 @dataclass
@@ -55,7 +62,7 @@ class JobResult:
     parts_to_cut: List[Part]
     plan: CutPlan
     findings: List[Finding] = field(default_factory=list)
-    #: the recognition before the person's decisions (None when there were none)
+    #: the recognition as recognised, before the person's decisions and part choices
     proposal: Optional[Recognition] = None
 
 
@@ -75,7 +82,8 @@ def load_and_recognise(path: str, options: JobOptions,
 
 def _load(path: str, options: JobOptions, progress: Optional[ProgressFn]
           ) -> "tuple[Drawing, Optional[Recognition], Recognition]":
-    """(drawing, proposal run or None without decisions, recognition to cut)."""
+    """(drawing, the recognition as recognised, recognition to cut: decisions and
+    part choices applied)."""
     from .dxfimport import ImportOptions, read_drawing
     from .recognition import RecogniseOptions, recognise
 
@@ -85,10 +93,29 @@ def _load(path: str, options: JobOptions, progress: Optional[ProgressFn]
     rec_opts = options.recognise or RecogniseOptions()
     recognition = recognise(drawing, rec_opts, _scaled(progress, 0.2, 0.4))
     if not options.decisions:
-        return drawing, None, recognition
+        return drawing, recognition, chosen_parts(drawing, recognition, options)
     from .decisions import apply_decisions, rerun_with_fixes
     decided = apply_decisions(recognition, options.decisions, rerun_with_fixes(drawing, rec_opts))
-    return drawing, recognition, decided
+    return drawing, recognition, chosen_parts(drawing, decided, options)
+
+
+def chosen_parts(drawing: Drawing, recognition: Recognition, options: JobOptions) -> Recognition:
+    """``recognition`` with the person's part choices applied (``options.part_choices``,
+    as the workbench's part objects hold them), else the defaults of
+    :func:`core.part_choice.default_choices` with ``options.sizes`` /
+    ``options.quantities`` (the CLI's ``--sizes`` / ``--quantity``)."""
+    from .part_choice import apply_choices, default_choices, sample_size
+
+    choices = options.part_choices
+    if choices is None:
+        choices = default_choices(recognition.parts, sample_size(drawing), options.sizes)
+        for pid, n in (options.quantities or {}).items():
+            if pid not in choices:
+                from .errors import InputError
+                raise InputError(f"--quantity names part {pid}, which the drawing does not have "
+                                 f"(parts: {', '.join(sorted(choices)) or 'none'})")
+            choices[pid].quantity = n
+    return apply_choices(recognition, choices) if choices else recognition
 
 
 def arrange(recognition: Recognition, options: JobOptions,

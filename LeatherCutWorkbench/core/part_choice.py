@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from copy import deepcopy
 from dataclasses import dataclass
-from typing import Dict, Iterable, List, Sequence
+from typing import Dict, Iterable, List, Optional, Sequence
 
 from .model import Drawing, Part, Recognition
 
@@ -98,14 +98,27 @@ def sample_size(drawing: Drawing) -> str:
     return (style_value(texts, "sample size") or "").strip()
 
 
-def default_choices(parts: Sequence[Part], sample: str = "") -> Dict[str, PartChoice]:
+def default_choices(parts: Sequence[Part], sample: str = "",
+                    wanted: Optional[Sequence[str]] = None) -> Dict[str, PartChoice]:
     """Every part with its drawn quantity, included -- except in a graded set
     (more than one size): there only the parts of ``sample`` (when it is one of
-    the sizes) or else of the first size.  (Whether recognition or a flag
-    decision excluded a part is not a person's part choice: that stays.)"""
+    the sizes) or else of the first size.  ``wanted`` names the sizes to cut
+    instead (``["all"]``: every size; a size the set lacks raises InputError).
+    (Whether recognition or a flag decision excluded a part is not a person's
+    part choice: that stays.)"""
     graded = sizes(parts)
-    keep = (sample if sample in graded else graded[0]) if len(graded) > 1 else None
-    return {p.id: PartChoice(include=keep is None or p.size == keep,
+    if wanted is not None and [w.lower() for w in wanted] != ["all"]:
+        missing = [w for w in wanted if w not in graded]
+        if missing:
+            from .errors import InputError
+            raise InputError(f"size {', '.join(missing)} is not in the drawing "
+                             f"(sizes: {', '.join(graded) or 'none'})")
+        keep = set(wanted)
+    elif wanted is not None or len(graded) <= 1:
+        keep = None
+    else:
+        keep = {sample if sample in graded else graded[0]}
+    return {p.id: PartChoice(include=keep is None or p.size in keep,
                              quantity=max(1, int(p.quantity)))
             for p in parts}
 

@@ -454,7 +454,7 @@ def job_options(job, nest_again: bool = False):
         move_to_origin=job.PlanOriginOffset if getattr(job, "PlanMoveToOrigin", False) else None,
         decisions={o.FlagId: o.Decision for o in flag_objects(job)},
         layout=layout, allow_invalid_layout=bool(getattr(job, "AllowInvalidLayout", False)),
-        log=_log_override)
+        log=_log_override, part_choices=part_objects.choices_of(job))
 
 
 def _log_override(message: str) -> None:
