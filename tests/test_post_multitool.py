@@ -40,7 +40,8 @@ def one_size(tmp_path, size="50"):
 
 @pytest.fixture(scope="module")
 def aama_job():
-    res = run_job(AAMA, JobOptions(plan=PlanOptions(method="nn"), move_to_origin=80.0))
+    res = run_job(AAMA, JobOptions(plan=PlanOptions(method="nn"), move_to_origin=80.0,
+                                  sizes=["all"]))
     return res
 
 
