@@ -50,6 +50,9 @@ def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> J
         else:
             setattr(opts, field, mod.options_from_args(args))
     opts.move_to_origin = getattr(args, "job_move_to_origin", None)
+    if machine is not None:
+        from ..post.compensation import apply_to_job
+        apply_to_job(opts, machine)
     return opts
 
 

@@ -9,7 +9,7 @@ Stages are imported lazily: importing this module costs nothing.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, List, Optional
+from typing import Any, Callable, List, Optional, Tuple
 
 from .geometry import Transform2D, bbox
 from .model import CutPlan, Drawing, Finding, Layout, OpenChain, Part, Recognition
@@ -28,6 +28,9 @@ class JobOptions:
     nest: Any = None
     plan: Any = None
     move_to_origin: Optional[float] = None
+    #: parts, layout -> (parts as the tool follows them, findings); set from the
+    #: machine profile (kerf, cut direction, lead-ins: post/compensation.py)
+    prepare: Optional[Callable[[List[Part], Optional[Layout]], Tuple[List[Part], List[Finding]]]] = None
 
 
 @dataclass
@@ -110,10 +113,12 @@ def run_job(path: str, options: Optional[JobOptions] = None,
     drawing, recognition = load_and_recognise(path, options, progress)
     layout, parts, chains = arrange(recognition, options, progress)
     report(progress, 0.7, "planning the cut path")
-    cut_plan = plan(parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    tool_parts, tool_findings = options.prepare(parts, layout) if options.prepare else (parts, [])
+    cut_plan = plan(tool_parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
     findings = list(drawing.findings) + list(recognition.findings)
     if layout is not None:
         findings += layout.findings
+    findings += tool_findings
     findings += cut_plan.findings
     report(progress, 1.0, "job planned")
     return JobResult(path, drawing, recognition, layout, parts, cut_plan, findings)

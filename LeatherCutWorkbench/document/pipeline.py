@@ -400,6 +400,10 @@ def _nest_prepare(job):
     parts = rec.active_parts()
     if not parts:
         raise InputError("no parts to nest: every part is excluded")
+    prof = job_profile(job)
+    if prof is not None:
+        from ..post.compensation import reserve_in_nesting
+        reserve_in_nesting(opts, prof)
     return parts, opts
 
 
@@ -546,7 +550,23 @@ def parts_to_cut(job) -> Tuple[List[model.Part], List[model.OpenChain]]:
 def _plan_prepare(job):
     parts, chains = parts_to_cut(job)
     opts = stage_options(job, "Plan")
-    return parts, chains, with_machine(opts, job)
+    prof = job_profile(job)
+    if prof is not None:
+        # kerf, cut direction and lead-ins of the machine (post/compensation.py)
+        from ..post.compensation import job_hook
+        hook = job_hook(prof, opts.entry_spacing)
+        if hook is not None:
+            parts, findings = hook(parts, current_layout(job) if job.NestContainer != "none" else None)
+            return parts, chains, with_machine(opts, job), findings
+    return parts, chains, with_machine(opts, job), []
+
+
+def job_profile(job):
+    """The job's machine profile, or None (no machine chosen, post not available)."""
+    if not getattr(job, "PostMachine", "") or not available("Post"):
+        return None
+    from ..post.profiles import load_profile
+    return load_profile(job.PostMachine)
 
 
 def with_machine(opts, job):
@@ -564,8 +584,10 @@ def with_machine(opts, job):
 
 def _plan_compute(inputs, progress):
     from ..core.pathplan import plan
-    parts, chains, opts = inputs
-    return plan(parts, chains, opts, progress)
+    parts, chains, opts, findings = inputs
+    cut_plan = plan(parts, chains, opts, progress)
+    cut_plan.findings[:0] = findings
+    return cut_plan
 
 
 def _plan_apply(job, cut_plan: model.CutPlan):
@@ -635,8 +657,13 @@ def _run_prepare(job):
     from ..core.job import JobOptions
     path, import_opts = _import_prepare(job)
     nest_opts = stage_options(job, "Nest") if job.NestContainer != "none" else None
-    return path, JobOptions(import_=import_opts, recognise=stage_options(job, "Recognise"),
-                            nest=nest_opts, plan=with_machine(stage_options(job, "Plan"), job))
+    opts = JobOptions(import_=import_opts, recognise=stage_options(job, "Recognise"),
+                      nest=nest_opts, plan=with_machine(stage_options(job, "Plan"), job))
+    prof = job_profile(job)
+    if prof is not None:
+        from ..post.compensation import apply_to_job
+        apply_to_job(opts, prof)
+    return path, opts
 
 
 def _run_compute(inputs, progress):

@@ -19,7 +19,12 @@ turned in the air and plunged again before every joint whose heading change
 exceeds ``profile.lift_angle``; the planner's ``CutItem.lifts`` are honoured as
 well (the union of both is used), so a planner run with a smaller angle can only
 add lifts, never remove one the machine needs.  Torches and drag knives never
-lift inside an item.
+lift inside an item, except over a tab (profile ``tab_count`` / ``tab_spacing``,
+:mod:`.tabs`): up, rapid across the tab, down and pierce again.
+
+Controller kerf compensation (profile ``kerf_mode == "controller"``): a
+``comp`` move (``name`` ``left`` / ``right``, the side the scrap lies on)
+before the tool goes down on a closed contour, ``comp`` ``off`` after it.
 """
 
 from __future__ import annotations
@@ -133,8 +138,12 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
     rapid starts with the knife up; headings change by at most 180 degrees per
     move; with a tangential knife no joint inside a cut turns by more than the
     lift angle without an up/turn/down."""
+    from . import tabs
+    from .cut_direction import scrap_on_left
     tp = Toolpath()
     mv = tp.moves
+    tab_gaps = tabs.plan_tabs(plan, profile)
+    controller = profile.kerf_mode == "controller" and profile.kerf > 0
     tangential = profile.tangential
     oc = profile.overcut if overcut is None else overcut
     here: Point = plan.home
@@ -158,9 +167,10 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         tp.segment_ids.extend(ids)
         lift_before = set(item.lifts)
         extra: List[Segment] = _overcut(item, oc) if oc > 0 and _is_closed(item) else []
-        work: List[Tuple[Segment, str, bool]] = [
-            (s, ids[j], j in lift_before) for j, s in enumerate(segs)]
-        work += [(s, ids[-1], False) for s in extra]
+        work: List[Tuple[Segment, str, bool, bool]] = [
+            (s, ids[j], j in lift_before, True) for j, s in enumerate(segs)]
+        work += [(s, ids[-1], False, True) for s in extra]
+        work = tabs.split(work, tab_gaps.get(i - 1, ()))
         if not work:
             continue
         first_pieces = _pieces(work[0][0], profile)
@@ -177,13 +187,27 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         add("rapid", seg=ids[0], x=start[0], y=start[1], heading=heading,
             feed=profile.rapid_feed, item=i)
         here = start
+        comp = controller and _is_closed(item)
+        if comp:
+            body = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
+            add("comp", seg=ids[0], name="left" if scrap_on_left(body, item.kind) else "right",
+                item=i)
         if profile.tool_on:
             add("io", seg=ids[0], name="tool_on", item=i)
         add("down", seg=ids[0], item=i)
         if profile.pierce_delay > 0:
             add("dwell", seg=ids[0], seconds=profile.pierce_delay, item=i)
         first = True
-        for w, (seg, sid, planned_lift) in enumerate(work):
+        for w, (seg, sid, planned_lift, cutting) in enumerate(work):
+            if not cutting:               # a tab: across it with the tool up
+                add("up", seg=sid, item=i)
+                here = seg.end
+                add("rapid", seg=sid, x=here[0], y=here[1], heading=heading,
+                    feed=profile.rapid_feed, item=i)
+                add("down", seg=sid, item=i)
+                if profile.pierce_delay > 0:
+                    add("dwell", seg=sid, seconds=profile.pierce_delay, item=i)
+                continue
             for k, piece in enumerate(_pieces(seg, profile)):
                 if piece.length <= 1e-9:
                     continue
@@ -212,6 +236,8 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
             if profile.sync_every_segment and (w + 1 == len(work) or work[w + 1][1] != sid):
                 # the segment's last line: its ok means the segment was executed
                 add("sync", seg=sid, item=i)
+        if comp:
+            add("comp", name="off", item=i)
         add("up", item=i)
         if profile.cooling_delay > 0:
             add("dwell", seconds=profile.cooling_delay, item=i)

@@ -1,0 +1,230 @@
+"""Parts as the tool must follow them: cut direction, kerf offset, lead-ins.
+
+Runs between arranging the parts (nesting or not) and planning, driven by the
+machine profile (docs/MACHINES.md, "Kerf, cut direction, lead-ins and tabs"):
+
+1. every closed contour is turned to the profile's cut direction
+   (:mod:`.cut_direction`);
+2. with ``kerf > 0`` and ``kerf_mode == "path"`` it is offset by ``kerf / 2``
+   to the scrap side (:mod:`.kerf`); a contour that vanishes, splits or has a
+   feature narrower than the kerf raises InputError naming the contour and the
+   profile field, so nothing is written;
+3. where the drawing has no lead-in for a contour and the profile asks for one
+   (a torch always), lead-ins (and lead-outs) are generated at the planner's
+   entry candidates (:mod:`.leads`); only those whose band clears every part
+   and defect are offered, so the planner chooses among collision-free entries
+   only.  A contour without any is reported (finding ``no-lead-in``) and cut
+   without a lead-in.
+
+The planner then sees the compensated contours; the drawn parts stay what the
+preview fills and the kerf check compares against.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any, List, Optional, Sequence, Tuple
+
+from ..core.errors import InputError
+from ..core.geometry import Segment, path_points, rotate_closed_path
+from ..core.model import Contour, Finding, LeadIn, Part
+from . import leads
+from .cut_direction import oriented, scrap_on_left
+from .kerf import OffsetError, offset_closed
+from .profiles import MachineProfile
+
+#: Lead lengths tried, as fractions of the profile length, before giving up.
+LEAD_SCALES = (1.0, 0.5, 0.25)
+#: At most this many generated lead-ins per contour are offered to the planner.
+MAX_LEAD_CANDIDATES = 24
+
+
+def lead_shapes(profile: MachineProfile) -> Tuple[str, str]:
+    """(lead-in shape, lead-out shape): ``none``, ``line`` or ``arc``, with the
+    tool defaults filled in (torch: arc lead-in, lead-out like the lead-in)."""
+    lin = profile.lead_in or ("arc" if profile.tool == "torch" else "none")
+    lout = profile.lead_out or (lin if profile.tool == "torch" else "none")
+    return lin, lout
+
+
+def active(profile: MachineProfile) -> bool:
+    """Whether the profile changes the contours at all (else the parts are
+    planned exactly as drawn and today's output is unchanged)."""
+    from .cut_direction import wanted_ccw
+    return (profile.kerf > 0 or lead_shapes(profile) != ("none", "none")
+            or wanted_ccw("outer", profile) is not None
+            or wanted_ccw("hole", profile) is not None)
+
+
+def reserve(profile: MachineProfile) -> float:
+    """Room (mm) the tool needs beyond the drawn outline of a part: the kerf
+    (the band the cut removes) plus how far a generated lead reaches out."""
+    lin, lout = lead_shapes(profile)
+    reach = max(leads.normal_extent(lin, profile.lead_in_length, profile.lead_in_angle),
+                leads.normal_extent(lout, profile.lead_out_length, profile.lead_out_angle))
+    return profile.kerf + reach
+
+
+def reserve_in_nesting(nest_options: Any, profile: MachineProfile) -> None:
+    """Widen the nesting spacing and margin by :func:`reserve`: the spacing the
+    user gives is then the web of material left between two cut bands."""
+    extra = reserve(profile)
+    if nest_options is None or extra <= 0:
+        return
+    nest_options.spacing += extra
+    nest_options.margin += extra
+
+
+def _polygon(segments: Sequence[Segment]):
+    from shapely.geometry import Polygon
+    poly = Polygon(path_points(segments, 0.01))
+    return poly if poly.is_valid else poly.buffer(0)
+
+
+def material(part: Part):
+    """The part's material as a shapely polygon (outer minus holes), drawn."""
+    poly = _polygon(part.outer.segments)
+    for h in part.holes:
+        poly = poly.difference(_polygon(h.segments))
+    return poly
+
+
+def _offset(c: Contour, kind: str, part: Part, segs: List[Segment],
+            profile: MachineProfile) -> List[Segment]:
+    d = profile.kerf / 2.0
+    left = scrap_on_left(segs, kind)
+    try:
+        return offset_closed(segs, d if left else -d, profile.kerf_corners)
+    except OffsetError as exc:
+        where = f" near ({exc.where[0]:.2f}, {exc.where[1]:.2f})" if exc.where else ""
+        raise InputError(f"kerf {profile.kerf:g} mm (profile field kerf) is larger than a "
+                         f"feature of {kind} contour {c.id} of part {part.id}{where}: {exc}",
+                         source=profile.source or profile.name)
+
+
+def _shifted(li: LeadIn, contour: Sequence[Segment]) -> LeadIn:
+    """A drawn lead moved (its shape kept) so the end that meets the drawn
+    contour meets the offset contour at the nearest point instead."""
+    from ..core.geometry import Transform2D
+    from ..core.pathplan.candidates import locate
+
+    at = li.segments[-1].end if li.role == "lead_in" else li.segments[0].start
+    s = locate(contour, at)
+    p = rotate_closed_path(contour, s)[0].start if s > 0 else contour[0].start
+    xf = Transform2D(dx=p[0] - at[0], dy=p[1] - at[1])
+    return replace(li, segments=[seg.transformed(xf) for seg in li.segments])
+
+
+def _generated_leads(c: Contour, kind: str, segs: List[Segment], profile: MachineProfile,
+                     obstacles: "leads.Obstacles", entry_spacing: float
+                     ) -> List[LeadIn]:
+    from ..core.pathplan.candidates import entry_positions
+
+    lin, lout = lead_shapes(profile)
+    # controller compensation moves the lead by half a kerf too
+    half = profile.kerf if profile.kerf_mode == "controller" else profile.kerf / 2.0
+    left = scrap_on_left(segs, kind)
+    positions = entry_positions(segs, entry_spacing, MAX_LEAD_CANDIDATES)
+    for scale in LEAD_SCALES:
+        found: List[LeadIn] = []
+        for s in positions:
+            path = rotate_closed_path(segs, s) if s > 0 else list(segs)
+            p = path[0].start
+            h_in, h_out = path[0].start_heading(), path[-1].end_heading()
+            li = leads.lead_in(p, h_in, left, lin, profile.lead_in_length * scale,
+                               profile.lead_in_angle) if lin != "none" else []
+            lo = leads.lead_out(p, h_out, left, lout, profile.lead_out_length * scale,
+                                profile.lead_out_angle) if lout != "none" else []
+            if not leads.is_clear(li + lo, half, obstacles):
+                continue
+            k = len(found) // 2
+            if li:
+                found.append(LeadIn(f"{c.id}#lead-in{k + 1}", c.id, li, "lead_in"))
+            if lo:
+                found.append(LeadIn(f"{c.id}#lead-out{k + 1}", c.id, lo, "lead_out"))
+        if found:
+            return found
+    return []
+
+
+def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence = (),
+               entry_spacing: float = 20.0) -> Tuple[List[Part], List[Finding]]:
+    """The parts as the tool follows them (see module docstring) and findings.
+
+    ``defects``: polygons (lists of points, mm) of hide defects leads must
+    avoid.  Raises InputError when the kerf is larger than a feature."""
+    from shapely.geometry import Polygon
+
+    findings: List[Finding] = []
+    active_parts = [p for p in parts if not p.excluded]
+    lin, lout = lead_shapes(profile)
+    want_leads = lin != "none" or lout != "none"
+    mats = [material(p) for p in active_parts] if want_leads else []
+    obstacles = leads.Obstacles(mats + [Polygon(d) for d in defects if len(d) >= 3]) \
+        if want_leads else None
+    controller = profile.kerf_mode == "controller"
+    out: List[Part] = []
+    no_lead: List[str] = []
+    for part in parts:
+        if part.excluded:
+            out.append(part)
+            continue
+        drawn_leads = {li.contour_id for li in part.lead_ins}
+        new_leads: List[LeadIn] = []
+        moved = {}
+        contours = []
+        for kind, c in [("hole", h) for h in part.holes] + [("outer", part.outer)]:
+            segs = oriented(c.segments, kind, profile)
+            shared = list(c.shared)
+            if segs is not c.segments and list(segs) != list(c.segments):
+                shared = sorted(len(segs) - 1 - i for i in shared)
+            if profile.kerf > 0:
+                comp = _offset(c, kind, part, segs, profile)
+                if not controller:
+                    segs = comp
+                    moved[c.id] = comp
+                    if shared:
+                        findings.append(Finding(
+                            "warning", "kerf-common-edge",
+                            f"contour {c.id} shares edges with another part; with a kerf of "
+                            f"{profile.kerf:g} mm each part is cut on its own", source=c.id))
+                    shared = []
+            if want_leads and c.id not in drawn_leads:
+                gen = _generated_leads(c, kind, segs, profile, obstacles, entry_spacing)
+                if gen:
+                    new_leads.extend(gen)
+                else:
+                    no_lead.append(c.id)
+            contours.append(replace(c, segments=list(segs), shared=shared))
+        new_leads[:0] = [_shifted(li, moved[li.contour_id]) if li.contour_id in moved else li
+                         for li in part.lead_ins]
+        out.append(replace(part, holes=contours[:-1], outer=contours[-1], lead_ins=new_leads))
+    for cid in no_lead:
+        findings.append(Finding("warning", "no-lead-in",
+                                f"no collision-free lead-in fits contour {cid} (profile fields "
+                                "lead_in_length / lead_in_angle); it is entered on the contour",
+                                source=cid))
+    return out, findings
+
+
+def job_hook(profile: MachineProfile, entry_spacing: float = 20.0):
+    """The ``JobOptions.prepare`` callable for ``profile`` (None when the
+    profile does not change the contours): parts, layout -> parts, findings."""
+    if not active(profile):
+        return None
+
+    def prepare(parts: List[Part], layout: Optional[Any]) -> Tuple[List[Part], List[Finding]]:
+        defects = [d for c in (layout.containers if layout is not None else []) for d in c.defects]
+        return compensate(parts, profile, defects, entry_spacing)
+    return prepare
+
+
+def apply_to_job(options: Any, profile: MachineProfile) -> None:
+    """Make a :class:`~..core.job.JobOptions` honour the profile: nesting
+    reserves room for kerf and leads, and the parts are compensated before
+    planning.  Used by the CLI and the workbench alike."""
+    if not active(profile):
+        return
+    reserve_in_nesting(options.nest, profile)
+    spacing = options.plan.entry_spacing if options.plan is not None else 20.0
+    options.prepare = job_hook(profile, spacing)
