@@ -188,29 +188,39 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
             feed=profile.rapid_feed, item=i)
         here = start
         comp = controller and _is_closed(item)
+        comp_side = ""
         if comp:
             body = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
-            add("comp", seg=ids[0], name="left" if scrap_on_left(body, item.kind) else "right",
-                item=i)
+            comp_side = "left" if scrap_on_left(body, item.kind) else "right"
         if profile.tool_on:
             add("io", seg=ids[0], name="tool_on", item=i)
         add("down", seg=ids[0], item=i)
         if profile.pierce_delay > 0:
             add("dwell", seg=ids[0], seconds=profile.pierce_delay, item=i)
         first = True
+        in_tab = False
         for w, (seg, sid, planned_lift, cutting) in enumerate(work):
             if not cutting:               # a tab: across it with the tool up
-                add("up", seg=sid, item=i)
+                if not in_tab:
+                    add("up", seg=sid, item=i)
+                in_tab = True
                 here = seg.end
                 add("rapid", seg=sid, x=here[0], y=here[1], heading=heading,
                     feed=profile.rapid_feed, item=i)
+                continue
+            if in_tab:                    # after a tab: down and pierce again
+                in_tab = False
                 add("down", seg=sid, item=i)
                 if profile.pierce_delay > 0:
                     add("dwell", seg=sid, seconds=profile.pierce_delay, item=i)
-                continue
             for k, piece in enumerate(_pieces(seg, profile)):
                 if piece.length <= 1e-9:
                     continue
+                if comp_side and isinstance(piece, LineSeg) and piece.length > 0.55 * profile.kerf:
+                    # LinuxCNC enters compensation on a straight move longer
+                    # than the tool radius: the first such move of the lead-in
+                    add("comp", seg=sid, name=comp_side, item=i)
+                    comp_side = ""
                 if tangential:
                     h_start = piece.start_heading() + profile.heading_offset
                     turn = turn_angle(heading, h_start) if heading is not None else 0.0
@@ -236,6 +246,12 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
             if profile.sync_every_segment and (w + 1 == len(work) or work[w + 1][1] != sid):
                 # the segment's last line: its ok means the segment was executed
                 add("sync", seg=sid, item=i)
+        if comp_side:
+            from ..core.errors import InputError
+            raise InputError(f"{item.kind} contour {item.contour_id} has no straight move longer "
+                             f"than half the kerf to enter cutter compensation on (profile field "
+                             f"kerf_mode 'controller'): give it a line lead-in or use kerf_mode "
+                             f"'path'", source=profile.source or profile.name)
         if comp:
             add("comp", name="off", item=i)
         add("up", item=i)
