@@ -125,14 +125,24 @@ def test_swept_kerf_arcs_sample():
 
 
 def test_cut_direction_torch_and_knife():
+    from LeatherCutWorkbench.core.geometry import turn_angle
     res = job(BAG, torch())
+    by_lead = {f.source for f in res.findings if f.code == "direction-from-lead-in"}
     closed = [it for it in res.plan.items if it.kind in ("outer", "hole")]
     for it in closed:
         body = it.segments[it.lead_in_count:len(it.segments) - it.lead_out_count]
-        assert is_ccw(body) == (it.kind == "hole"), it.contour_id
+        lead = it.segments[:it.lead_in_count]
+        # the lead-in flows into the contour, never against it
+        assert turn_angle(lead[-1].end_heading(), body[0].start_heading()) <= 90.0 + 1e-6
+        if it.contour_id not in by_lead:
+            assert is_ccw(body) == (it.kind == "hole"), it.contour_id
+    assert len(by_lead) < len(closed) // 2
     knife = load_profile("grblhal_tangential")
     res_k = job(BAG, profile_from_dict({**knife.to_json(), "outer_direction": "cw"}))
+    by_lead = {f.source for f in res_k.findings if f.code == "direction-from-lead-in"}
     for it in res_k.plan.items:
+        if it.contour_id in by_lead:
+            continue
         if it.kind == "outer":
             assert not is_ccw(it.segments[it.lead_in_count:])
         if it.kind == "hole":          # holes as drawn (clockwise)

@@ -22,11 +22,13 @@ preview fills and the kerf check compares against.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from typing import Any, List, Optional, Sequence, Tuple
 
 from ..core.errors import InputError
-from ..core.geometry import Segment, path_points, rotate_closed_path
+from ..core.geometry import (ArcSeg, LineSeg, Segment, path_points, reverse_path,
+                             rotate_closed_path)
 from ..core.model import Contour, Finding, LeadIn, Part
 from . import leads
 from .cut_direction import oriented, scrap_on_left
@@ -41,9 +43,14 @@ MAX_LEAD_CANDIDATES = 24
 
 def lead_shapes(profile: MachineProfile) -> Tuple[str, str]:
     """(lead-in shape, lead-out shape): ``none``, ``line`` or ``arc``, with the
-    tool defaults filled in (torch: arc lead-in, lead-out like the lead-in)."""
+    tool defaults filled in (torch: arc lead-in, lead-out like the lead-in).
+    Controller compensation always gets arcs: LinuxCNC trims an inside corner
+    against one neighbouring move only, so a straight lead meeting the contour
+    at an angle is refused wherever the contour's next piece is short."""
     lin = profile.lead_in or ("arc" if profile.tool == "torch" else "none")
     lout = profile.lead_out or (lin if profile.tool == "torch" else "none")
+    if profile.kerf_mode == "controller" and profile.kerf > 0:
+        lin, lout = ("arc" if lin != "none" else lin), ("arc" if lout != "none" else lout)
     return lin, lout
 
 
@@ -115,27 +122,85 @@ def _shifted(li: LeadIn, contour: Sequence[Segment]) -> LeadIn:
     return replace(li, segments=[seg.transformed(xf) for seg in li.segments])
 
 
+def _variants(profile: MachineProfile) -> List[Tuple[str, str, float, float]]:
+    """(lead-in shape, lead-out shape, length scale, line angle) to try in turn.
+    With controller compensation a square-on line lead-in without lead-out is
+    the last resort (small holes, where no arc wider than the kerf fits)."""
+    lin, lout = lead_shapes(profile)
+    out = [(lin, lout, k, profile.lead_in_angle) for k in LEAD_SCALES]
+    if profile.kerf_mode == "controller" and profile.kerf > 0 and lin != "none":
+        out += [("line", "none", k, 90.0) for k in LEAD_SCALES]
+    return out
+
+
+def _against_drawn_lead(segs: Sequence[Segment], drawn: Sequence[LeadIn]) -> bool:
+    """Whether the first drawn lead-in arrives against the direction of ``segs``
+    (its last heading and the contour's heading at the join differ by more than
+    90 degrees)."""
+    from ..core.geometry import turn_angle
+    from ..core.pathplan.candidates import locate
+
+    lead = next((li for li in drawn if li.role == "lead_in"), None)
+    if lead is None:
+        return False
+    s = locate(segs, lead.segments[-1].end)
+    path = rotate_closed_path(segs, s) if s > 0 else list(segs)
+    return turn_angle(lead.segments[-1].end_heading(), path[0].start_heading()) > 90.0
+
+
+def _entry_line(first: Segment, kerf: float) -> LineSeg:
+    """A straight move of one kerf ending tangentially where ``first`` starts:
+    LinuxCNC switches compensation on with a straight move longer than the
+    tool radius."""
+    h = math.radians(first.start_heading())
+    return LineSeg((first.start[0] - kerf * math.cos(h), first.start[1] - kerf * math.sin(h)),
+                   first.start)
+
+
+def _with_entry_line(li: LeadIn, profile: MachineProfile) -> LeadIn:
+    """A drawn lead-in with :func:`_entry_line` in front unless it starts
+    with a long enough straight move already."""
+    first = li.segments[0]
+    if li.role != "lead_in" or (isinstance(first, LineSeg) and first.length > profile.kerf):
+        return li
+    return replace(li, segments=[_entry_line(first, profile.kerf)] + list(li.segments))
+
+
 def _generated_leads(c: Contour, kind: str, segs: List[Segment], profile: MachineProfile,
                      obstacles: "leads.Obstacles", entry_spacing: float
                      ) -> List[LeadIn]:
+    from ..core.geometry import Transform2D
     from ..core.pathplan.candidates import entry_positions
 
-    lin, lout = lead_shapes(profile)
-    # controller compensation moves the lead by half a kerf too
-    half = profile.kerf if profile.kerf_mode == "controller" else profile.kerf / 2.0
+    half = profile.kerf / 2.0
+    # controller compensation: the lead is written on the drawn contour and the
+    # controller moves it half a kerf to the scrap side; it is checked there
+    controller = profile.kerf_mode == "controller" and profile.kerf > 0
     left = scrap_on_left(segs, kind)
     positions = entry_positions(segs, entry_spacing, MAX_LEAD_CANDIDATES)
-    for scale in LEAD_SCALES:
+    for lin, lout, scale, angle in _variants(profile):
         found: List[LeadIn] = []
         for s in positions:
             path = rotate_closed_path(segs, s) if s > 0 else list(segs)
             p = path[0].start
             h_in, h_out = path[0].start_heading(), path[-1].end_heading()
             li = leads.lead_in(p, h_in, left, lin, profile.lead_in_length * scale,
-                               profile.lead_in_angle) if lin != "none" else []
+                               angle) if lin != "none" else []
             lo = leads.lead_out(p, h_out, left, lout, profile.lead_out_length * scale,
                                 profile.lead_out_angle) if lout != "none" else []
-            if not leads.is_clear(li + lo, half, obstacles):
+            if controller:
+                if lin == "arc":
+                    li.insert(0, _entry_line(li[0], profile.kerf))
+                elif min(path[0].length, path[-1].length) <= profile.kerf:
+                    continue              # LinuxCNC cannot trim the corner against a short piece
+                if any(isinstance(g, ArcSeg) and g.radius <= profile.kerf for g in li + lo):
+                    continue              # LinuxCNC needs arcs wider than the tool radius
+                _, n = leads.frame(h_in, left)
+                xf = Transform2D(dx=half * n[0], dy=half * n[1])
+                check = [seg.transformed(xf) for seg in li + lo]
+            else:
+                check = li + lo
+            if not leads.is_clear(check, half, obstacles):
                 continue
             k = len(found) // 2
             if li:
@@ -175,6 +240,12 @@ def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence
         contours = []
         for kind, c in [("hole", h) for h in part.holes] + [("outer", part.outer)]:
             segs = oriented(c.segments, kind, profile)
+            if _against_drawn_lead(segs, [li for li in part.lead_ins if li.contour_id == c.id]):
+                # the drawn lead-in wins: it was drawn for the other direction
+                segs = reverse_path(segs)
+                findings.append(Finding("info", "direction-from-lead-in",
+                                        f"contour {c.id} is cut the way its drawn lead-in enters "
+                                        "it", source=c.id))
             shared = list(c.shared)
             if segs is not c.segments and list(segs) != list(c.segments):
                 shared = sorted(len(segs) - 1 - i for i in shared)
@@ -196,7 +267,8 @@ def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence
                 else:
                     no_lead.append(c.id)
             contours.append(replace(c, segments=list(segs), shared=shared))
-        new_leads[:0] = [_shifted(li, moved[li.contour_id]) if li.contour_id in moved else li
+        new_leads[:0] = [_shifted(li, moved[li.contour_id]) if li.contour_id in moved else
+                         _with_entry_line(li, profile) if controller else li
                          for li in part.lead_ins]
         out.append(replace(part, holes=contours[:-1], outer=contours[-1], lead_ins=new_leads))
     for cid in no_lead:

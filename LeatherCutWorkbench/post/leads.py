@@ -28,7 +28,8 @@ CLEARANCE_TOL = 0.01
 MIN_BAND = 0.05
 
 
-def _frame(tangent_deg: float, scrap_left: bool) -> Tuple[Point, Point]:
+def frame(tangent_deg: float, scrap_left: bool) -> Tuple[Point, Point]:
+    """(unit tangent, unit normal pointing to the scrap side)."""
     a = math.radians(tangent_deg)
     t = (math.cos(a), math.sin(a))
     n = (-t[1], t[0]) if scrap_left else (t[1], -t[0])
@@ -39,7 +40,7 @@ def lead_in(entry: Point, tangent_deg: float, scrap_left: bool, shape: str,
             length: float, angle: float) -> List[Segment]:
     """Lead-in segments ending at ``entry`` where the contour leaves in
     direction ``tangent_deg``; ``scrap_left``: the scrap lies left of it."""
-    t, n = _frame(tangent_deg, scrap_left)
+    t, n = frame(tangent_deg, scrap_left)
     if shape == "line":
         a = math.radians(angle)
         start = (entry[0] + length * (math.sin(a) * n[0] - math.cos(a) * t[0]),
@@ -57,7 +58,7 @@ def lead_out(exit_: Point, tangent_deg: float, scrap_left: bool, shape: str,
              length: float, angle: float) -> List[Segment]:
     """Lead-out segments starting at ``exit_`` where the contour arrives in
     direction ``tangent_deg``: the mirror image of :func:`lead_in`."""
-    t, n = _frame(tangent_deg, scrap_left)
+    t, n = frame(tangent_deg, scrap_left)
     if shape == "line":
         a = math.radians(angle)
         end = (exit_[0] + length * (math.sin(a) * n[0] + math.cos(a) * t[0]),

@@ -108,7 +108,7 @@ def _pieces(seg: Segment, profile: MachineProfile) -> List[Segment]:
 def _overcut(item: CutItem, length: float) -> List[Segment]:
     """The first ``length`` mm of a closed contour (after its lead-in), cut again
     past the entry so the start and end of the cut overlap."""
-    contour = item.segments[item.lead_in_count:]
+    contour = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
     out: List[Segment] = []
     left = length
     for seg in contour:
@@ -124,7 +124,7 @@ def _overcut(item: CutItem, length: float) -> List[Segment]:
 
 
 def _is_closed(item: CutItem) -> bool:
-    contour = item.segments[item.lead_in_count:]
+    contour = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
     return item.kind in ("outer", "hole") and bool(contour) and \
         dist(contour[0].start, contour[-1].end) < 1e-6
 
@@ -166,7 +166,11 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         ids = [seg_id(i, j) for j in range(1, len(segs) + 1)]
         tp.segment_ids.extend(ids)
         lift_before = set(item.lifts)
-        extra: List[Segment] = _overcut(item, oc) if oc > 0 and _is_closed(item) else []
+        # controller compensation trims the contour's first piece where a lead
+        # meets it at an angle: the overcut (at least one kerf) cuts that
+        # stretch too.  A lead-out starts at the entry: no overcut then.
+        oc_item = 0.0 if item.lead_out_count else max(oc, profile.kerf) if controller else oc
+        extra: List[Segment] = _overcut(item, oc_item) if oc_item > 0 and _is_closed(item) else []
         work: List[Tuple[Segment, str, bool, bool]] = [
             (s, ids[j], j in lift_before, True) for j, s in enumerate(segs)]
         work += [(s, ids[-1], False, True) for s in extra]
@@ -216,7 +220,8 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
             for k, piece in enumerate(_pieces(seg, profile)):
                 if piece.length <= 1e-9:
                     continue
-                if comp_side and isinstance(piece, LineSeg) and piece.length > 0.55 * profile.kerf:
+                if comp_side and w < item.lead_in_count and isinstance(piece, LineSeg) \
+                        and piece.length > 0.55 * profile.kerf:
                     # LinuxCNC enters compensation on a straight move longer
                     # than the tool radius: the first such move of the lead-in
                     add("comp", seg=sid, name=comp_side, item=i)
@@ -248,9 +253,9 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
                 add("sync", seg=sid, item=i)
         if comp_side:
             from ..core.errors import InputError
-            raise InputError(f"{item.kind} contour {item.contour_id} has no straight move longer "
-                             f"than half the kerf to enter cutter compensation on (profile field "
-                             f"kerf_mode 'controller'): give it a line lead-in or use kerf_mode "
+            raise InputError(f"{item.kind} contour {item.contour_id} has no straight lead-in move "
+                             f"longer than half the kerf to enter cutter compensation on (profile "
+                             f"field kerf_mode 'controller'): give it a lead-in or use kerf_mode "
                              f"'path'", source=profile.source or profile.name)
         if comp:
             add("comp", name="off", item=i)
