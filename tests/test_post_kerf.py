@@ -268,3 +268,30 @@ def test_nesting_reserves_kerf_and_leadin_room():
     apply_to_job(opts, prof)
     # kerf 1.5 + an arc lead-in of 5 mm over 90 degrees reaching r = 3.18 mm out
     assert opts.nest.spacing == pytest.approx(1.0 + 1.5 + 5.0 / (math.pi / 2), abs=1e-6)
+
+
+def test_flame_job_end_to_end_from_cli(tmp_path, capsys):
+    """``leathercut run`` with a torch profile: job.nc passes the kerf check,
+    the preview shows the compensated path, lead-ins, lead-outs and tabs."""
+    from LeatherCutWorkbench.cli import main
+    d = load_profile("flame_plasma").to_json()
+    d.update(name="flame_tabs", tab_count=2, tab_width=1.5)
+    path = tmp_path / "flame_tabs.json"
+    path.write_text(json.dumps(d))
+    out = tmp_path / "out"
+    rc = main(["run", BAG, "-o", str(out), "--machine", str(path), "--move-to-origin", "20",
+               "--plan-method", "nn", "--json"])
+    assert rc == 0, capsys.readouterr().err
+    svg = (out / "preview.svg").read_text()
+    assert svg.count('class="tab"') == 2 * 7           # 7 outer contours
+    assert svg.count('class="lead-in"') == 13 and svg.count('class="lead-out"') >= 11
+    prof = load_profile(str(path))
+    text = (out / "job.nc").read_text()
+    assert "G41" not in text                          # pre-offset path
+    report = json.loads((out / "report.json").read_text())
+    assert report["machine"] == "flame_tabs"
+    # without tabs the same job's band touches every outline (checked above);
+    # with tabs the band still never enters a part
+    res = job(BAG, prof)
+    band = swept_band(traced_moves(text, prof), prof.kerf / 2, prof.origin)
+    assert kerf_deviation(res.parts_to_cut, band, prof.kerf / 2, TOL)["penetration"] <= TOL

@@ -61,7 +61,7 @@ def run(args: argparse.Namespace) -> Report:
         fh.write(text_nc)
     with open(paths["preview.svg"], "w", encoding="utf-8") as fh:
         fh.write(svg_preview.render(result.plan, result.parts_to_cut,
-                                    title=os.path.basename(args.file)))
+                                    title=os.path.basename(args.file), profile=profile))
     with open(paths["report.json"], "w", encoding="utf-8") as fh:
         json.dump(data, fh, indent=2)
         fh.write("\n")

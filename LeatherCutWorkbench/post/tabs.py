@@ -66,7 +66,7 @@ def plan_tabs(plan: CutPlan, profile: MachineProfile) -> Dict[int, List[Tuple[fl
 
         def clear(s: float) -> bool:
             for a in (s, s + w / 2.0, s + w):
-                p = SPoint(_point_at(item.segments, a))
+                p = SPoint(point_along(item.segments, a))
                 for k in tree.query(p.buffer(COMMON_TOL)):
                     if valid[int(k)] != i and lines[valid[int(k)]].distance(p) < COMMON_TOL:
                         return False
@@ -85,7 +85,8 @@ def plan_tabs(plan: CutPlan, profile: MachineProfile) -> Dict[int, List[Tuple[fl
     return out
 
 
-def _point_at(segments: Sequence[Segment], s: float):
+def point_along(segments: Sequence[Segment], s: float):
+    """The point ``s`` mm along a connected path (clamped to its end)."""
     acc = 0.0
     for seg in segments:
         if acc + seg.length >= s:
