@@ -295,3 +295,24 @@ def test_flame_job_end_to_end_from_cli(tmp_path, capsys):
     res = job(BAG, prof)
     band = swept_band(traced_moves(text, prof), prof.kerf / 2, prof.origin)
     assert kerf_deviation(res.parts_to_cut, band, prof.kerf / 2, TOL)["penetration"] <= TOL
+
+
+def test_nested_flame_job_keeps_room_for_kerf_and_leads():
+    """Nested on a sheet with the spacing the profile reserves: every contour
+    gets a collision-free lead-in, drawn lead-ins that nesting moved into a
+    neighbour are replaced (and reported), and the kerf check holds."""
+    from LeatherCutWorkbench.core.nesting.options import ContainerSpec, NestOptions
+    prof = torch()
+    nest = NestOptions(container=ContainerSpec.sheet(1200, 800), spacing=1.0, margin=2.0,
+                       time_budget=0, rotation_step=90, workers=1)
+    opts = JobOptions(plan=PlanOptions(method="nn"), nest=nest)
+    apply_to_job(opts, prof)
+    res = run_job(BAG, opts)
+    assert not res.layout.unplaced
+    codes = [f.code for f in res.findings]
+    assert "no-lead-in" not in codes
+    assert all(it.lead_in_count > 0 for it in res.plan.items)
+    text = gcode.export(res.plan, prof)
+    band = swept_band(traced_moves(text, prof), prof.kerf / 2, prof.origin)
+    dev = kerf_deviation(res.parts_to_cut, band, prof.kerf / 2, TOL)
+    assert dev["penetration"] <= TOL and dev["gap"] <= TOL, (dev, codes)

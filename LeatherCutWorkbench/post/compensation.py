@@ -212,12 +212,55 @@ def _generated_leads(c: Contour, kind: str, segs: List[Segment], profile: Machin
     return []
 
 
+def _contour(c: Contour, kind: str, part: Part, drawn: List[LeadIn], profile: MachineProfile,
+             obstacles: Optional["leads.Obstacles"], entry_spacing: float,
+             findings: List[Finding]) -> Tuple[Contour, List[LeadIn], bool]:
+    """One contour as the tool follows it, its leads (drawn, moved onto the
+    offset contour, or generated) and whether it has a lead-in at all."""
+    controller = profile.kerf_mode == "controller"
+    segs = oriented(c.segments, kind, profile)
+    if _against_drawn_lead(segs, drawn):
+        # the drawn lead-in wins: it was drawn for the other direction
+        segs = reverse_path(segs)
+        findings.append(Finding("info", "direction-from-lead-in",
+                                f"contour {c.id} is cut the way its drawn lead-in enters it",
+                                source=c.id))
+    shared = list(c.shared)
+    if list(segs) != list(c.segments):
+        shared = sorted(len(segs) - 1 - i for i in shared)
+    if profile.kerf > 0:
+        comp = _offset(c, kind, part, segs, profile)
+        if not controller:
+            segs = comp
+            if shared:
+                findings.append(Finding(
+                    "warning", "kerf-common-edge",
+                    f"contour {c.id} shares edges with another part; with a kerf of "
+                    f"{profile.kerf:g} mm each part is cut on its own", source=c.id))
+            shared = []
+    leads_of: List[LeadIn] = []
+    if drawn:
+        if profile.kerf > 0 and not controller:
+            leads_of = [_shifted(li, segs) for li in drawn]
+        elif controller and profile.kerf > 0:
+            leads_of = [_with_entry_line(li, profile) for li in drawn]
+        else:
+            leads_of = list(drawn)
+    elif obstacles is not None:
+        leads_of = _generated_leads(c, kind, segs, profile, obstacles, entry_spacing)
+    has_lead = any(li.role == "lead_in" for li in leads_of) or obstacles is None
+    return replace(c, segments=list(segs), shared=shared), leads_of, has_lead
+
+
 def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence = (),
                entry_spacing: float = 20.0) -> Tuple[List[Part], List[Finding]]:
     """The parts as the tool follows them (see module docstring) and findings.
 
     ``defects``: polygons (lists of points, mm) of hide defects leads must
-    avoid.  Raises InputError when the kerf is larger than a feature."""
+    avoid.  A drawn lead whose band would cut into a part or a defect (e.g.
+    after nesting moved its neighbours close) is dropped with a warning and
+    replaced by a generated one.  Raises InputError when the kerf is larger
+    than a feature."""
     from shapely.geometry import Polygon
 
     findings: List[Finding] = []
@@ -227,49 +270,31 @@ def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence
     mats = [material(p) for p in active_parts] if want_leads else []
     obstacles = leads.Obstacles(mats + [Polygon(d) for d in defects if len(d) >= 3]) \
         if want_leads else None
-    controller = profile.kerf_mode == "controller"
+    shift = profile.kerf / 2.0 if profile.kerf_mode == "controller" else 0.0
     out: List[Part] = []
     no_lead: List[str] = []
     for part in parts:
         if part.excluded:
             out.append(part)
             continue
-        drawn_leads = {li.contour_id for li in part.lead_ins}
         new_leads: List[LeadIn] = []
-        moved = {}
         contours = []
         for kind, c in [("hole", h) for h in part.holes] + [("outer", part.outer)]:
-            segs = oriented(c.segments, kind, profile)
-            if _against_drawn_lead(segs, [li for li in part.lead_ins if li.contour_id == c.id]):
-                # the drawn lead-in wins: it was drawn for the other direction
-                segs = reverse_path(segs)
-                findings.append(Finding("info", "direction-from-lead-in",
-                                        f"contour {c.id} is cut the way its drawn lead-in enters "
-                                        "it", source=c.id))
-            shared = list(c.shared)
-            if segs is not c.segments and list(segs) != list(c.segments):
-                shared = sorted(len(segs) - 1 - i for i in shared)
-            if profile.kerf > 0:
-                comp = _offset(c, kind, part, segs, profile)
-                if not controller:
-                    segs = comp
-                    moved[c.id] = comp
-                    if shared:
-                        findings.append(Finding(
-                            "warning", "kerf-common-edge",
-                            f"contour {c.id} shares edges with another part; with a kerf of "
-                            f"{profile.kerf:g} mm each part is cut on its own", source=c.id))
-                    shared = []
-            if want_leads and c.id not in drawn_leads:
-                gen = _generated_leads(c, kind, segs, profile, obstacles, entry_spacing)
-                if gen:
-                    new_leads.extend(gen)
-                else:
-                    no_lead.append(c.id)
-            contours.append(replace(c, segments=list(segs), shared=shared))
-        new_leads[:0] = [_shifted(li, moved[li.contour_id]) if li.contour_id in moved else
-                         _with_entry_line(li, profile) if controller else li
-                         for li in part.lead_ins]
+            drawn = [li for li in part.lead_ins if li.contour_id == c.id]
+            res = _contour(c, kind, part, drawn, profile, obstacles, entry_spacing, findings)
+            if drawn and obstacles is not None and not all(
+                    leads.is_clear(_as_cut(li, res[0].segments, kind, shift), profile.kerf / 2.0,
+                                   obstacles) for li in res[1]):
+                findings.append(Finding(
+                    "warning", "drawn-lead-in-collides",
+                    f"the drawn lead of contour {c.id} would cut into a part or a defect; "
+                    "a lead is generated instead", source=c.id))
+                res = _contour(c, kind, part, [], profile, obstacles, entry_spacing, findings)
+            contour, leads_of, has_lead = res
+            if not has_lead:
+                no_lead.append(c.id)
+            contours.append(contour)
+            new_leads.extend(leads_of)
         out.append(replace(part, holes=contours[:-1], outer=contours[-1], lead_ins=new_leads))
     for cid in no_lead:
         findings.append(Finding("warning", "no-lead-in",
@@ -277,6 +302,22 @@ def compensate(parts: Sequence[Part], profile: MachineProfile, defects: Sequence
                                 "lead_in_length / lead_in_angle); it is entered on the contour",
                                 source=cid))
     return out, findings
+
+
+def _as_cut(li: LeadIn, contour: Sequence[Segment], kind: str, shift: float) -> List[Segment]:
+    """A drawn lead as the tool centre follows it: as written, or (controller
+    compensation) moved ``shift`` mm square to the contour at its join."""
+    if not shift:
+        return list(li.segments)
+    from ..core.geometry import Transform2D
+    from ..core.pathplan.candidates import locate
+
+    at = li.segments[-1].end if li.role == "lead_in" else li.segments[0].start
+    s = locate(contour, at)
+    path = rotate_closed_path(contour, s) if s > 0 else list(contour)
+    _, n = leads.frame(path[0].start_heading(), scrap_on_left(contour, kind))
+    xf = Transform2D(dx=shift * n[0], dy=shift * n[1])
+    return [seg.transformed(xf) for seg in li.segments]
 
 
 def job_hook(profile: MachineProfile, entry_spacing: float = 20.0):
