@@ -15,10 +15,16 @@ from LeatherCutWorkbench.document import objects, pipeline  # noqa: E402
 from LeatherCutWorkbench.post.profiles import load_profile  # noqa: E402
 
 from kerf_helpers import kerf_deviation, swept_band, traced_moves  # noqa: E402
-from test_document_job import doc  # noqa: E402,F401  (the FreeCAD document fixture)
 
 BAG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                    "examples", "bag.dxf")
+
+
+@pytest.fixture
+def doc():
+    d = FreeCAD.newDocument("LCKerf")
+    yield d
+    FreeCAD.closeDocument(d.Name)
 
 
 def _flame_job(doc, out):
