@@ -316,3 +316,40 @@ def test_nested_flame_job_keeps_room_for_kerf_and_leads():
     band = swept_band(traced_moves(text, prof), prof.kerf / 2, prof.origin)
     dev = kerf_deviation(res.parts_to_cut, band, prof.kerf / 2, TOL)
     assert dev["penetration"] <= TOL and dev["gap"] <= TOL, (dev, codes)
+
+
+def test_offset_of_joins_meeting_to_a_micron_is_accepted():
+    """Regression: the first part of dxf2gcode_Bogen_Ellipsen_Polylinien_Block.dxf
+    as nested (a 90 degree arc and two lines); the corner arcs overshoot by
+    2e-11 degrees and the ring then backtracked 1e-13 mm, which was refused
+    as 'the offset path crosses itself'."""
+    segs = [ArcSeg((645.6801000000005, 459.6136999999999), 635.0000000000005, 225.0, -90.0),
+            LineSeg((196.66729394654294, 908.6265060534579), (645.6801, 459.6136999999999)),
+            LineSeg((645.6801, 459.6136999999999), (196.6672939465425, 10.600893946541873))]
+    out = offset_closed(segs, 0.75)
+    assert sum(isinstance(s, ArcSeg) for s in out) == 4
+    assert [s.radius for s in out if isinstance(s, ArcSeg)][0] == pytest.approx(635.75)
+
+
+def test_knife_with_optional_lead_ins():
+    """A tangential knife asks for line lead-ins: they are generated on the
+    scrap side, clear of every part, and the contours keep the drawn direction."""
+    knife = load_profile("grblhal_tangential").to_json()
+    knife.update(lead_in="line", lead_in_length=4.0, lead_in_angle=30.0)
+    prof = profile_from_dict(knife, source="test")
+    res = job(BAG, prof)
+    mats = [material(p) for p in res.parts_to_cut]
+    drawn = {li.contour_id for p in res.parts_to_cut for li in p.lead_ins}
+    unled = {f.source for f in res.findings if f.code == "no-lead-in"}
+    assert len(unled) <= 2
+    for it in res.plan.items:
+        assert (it.lead_in_count > 0) != (it.contour_id in unled)
+        assert it.lead_out_count == 0
+        body = it.segments[it.lead_in_count:]
+        if it.contour_id not in drawn:
+            assert is_ccw(body) == (it.kind == "outer")        # as drawn
+            if it.contour_id in unled:
+                continue
+            # the lead ends on the contour: it touches its own part only there
+            band = LineString(path_points(it.segments[:1], 0.01)).buffer(0.005)
+            assert not any(band.intersects(m.buffer(-0.01)) for m in mats)

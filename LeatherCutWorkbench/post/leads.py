@@ -24,8 +24,9 @@ from ..core.geometry import ArcSeg, LineSeg, Point, Segment, path_points
 #: Material closer than this (mm) to a lead's band counts as touched: the
 #: band of a lead meets the contour's own band exactly at the entry.
 CLEARANCE_TOL = 0.01
-#: Half-width (mm) of the band checked for a tool without kerf (knife, pen).
-MIN_BAND = 0.05
+#: Half-width (mm) of the band checked for a tool without kerf (knife, pen):
+#: below CLEARANCE_TOL, so a lead ending on the contour does not touch it.
+MIN_BAND = 0.005
 
 
 def frame(tangent_deg: float, scrap_left: bool) -> Tuple[Point, Point]:
