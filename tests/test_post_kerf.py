@@ -290,6 +290,9 @@ def test_flame_job_end_to_end_from_cli(tmp_path, capsys):
     assert "G41" not in text                          # pre-offset path
     report = json.loads((out / "report.json").read_text())
     assert report["machine"] == "flame_tabs"
+    tp = report["tool_path"]
+    assert tp["kerf_mm"] == 1.5 and tp["outer_direction"] == "cw" and tp["tabs"] == 14
+    assert tp["items_with_lead_in"] == 13 and tp["closed_items_without_lead_in"] == []
     # without tabs the same job's band touches every outline (checked above);
     # with tabs the band still never enters a part
     res = job(BAG, prof)

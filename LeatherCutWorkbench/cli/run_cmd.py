@@ -56,6 +56,8 @@ def run(args: argparse.Namespace) -> Report:
     paths = {name: os.path.join(outdir, name) for name in ("job.nc", "preview.svg", "report.json")}
     data = job_report(result)
     data["machine"] = profile.name
+    from ..post.compensation import summary
+    data["tool_path"] = summary(result.plan, profile)
     data["outputs"] = paths
     with open(paths["job.nc"], "w", encoding="ascii", newline="\n") as fh:
         fh.write(text_nc)

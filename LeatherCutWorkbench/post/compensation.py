@@ -341,3 +341,27 @@ def apply_to_job(options: Any, profile: MachineProfile) -> None:
     reserve_in_nesting(options.nest, profile)
     spacing = options.plan.entry_spacing if options.plan is not None else 20.0
     options.prepare = job_hook(profile, spacing)
+
+
+def summary(plan: Any, profile: MachineProfile) -> dict:
+    """What the tool does beyond the drawing, for ``report.json``: kerf and its
+    mode, cut directions, lead counts and tabs (mm, counts)."""
+    from .cut_direction import wanted_ccw
+    from .tabs import plan_tabs
+
+    def direction(kind: str) -> str:
+        want = wanted_ccw(kind, profile)
+        return "drawn" if want is None else ("ccw" if want else "cw")
+
+    lin, lout = lead_shapes(profile)
+    closed = [it for it in plan.items if it.kind in ("outer", "hole")]
+    return {
+        "kerf_mm": profile.kerf, "kerf_mode": profile.kerf_mode,
+        "kerf_corners": profile.kerf_corners,
+        "outer_direction": direction("outer"), "hole_direction": direction("hole"),
+        "lead_in": lin, "lead_out": lout,
+        "items_with_lead_in": sum(1 for it in closed if it.lead_in_count),
+        "items_with_lead_out": sum(1 for it in closed if it.lead_out_count),
+        "closed_items_without_lead_in": [it.contour_id for it in closed if not it.lead_in_count],
+        "tabs": sum(len(v) for v in plan_tabs(plan, profile).values()),
+    }
