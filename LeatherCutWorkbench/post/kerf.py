@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Optional, Sequence
+from typing import List, Optional, Sequence, Tuple
 
 from ..core.geometry import ArcSeg, CurveSeg, LineSeg, Point, Segment, path_points
 
@@ -67,6 +67,7 @@ class _Piece:
     radius: float = 0.0
     ccw: bool = True
     sweep0: float = 0.0          # |sweep| of the untrimmed arc, degrees
+    join: bool = False           # a corner arc (it may be trimmed, never extended)
     a0: float = 0.0              # untrimmed start angle of the arc, degrees
 
     def tangent_end(self) -> Point:
@@ -100,9 +101,14 @@ def _arc_sweep(p: _Piece) -> float:
 
 
 def _length_along(p: _Piece) -> float:
+    """Length (mm) of the trimmed piece; negative when trimming consumed it
+    (or extended a corner arc past its corner)."""
     if p.center is None:
         return (p.p1[0] - p.p0[0]) * p.u[0] + (p.p1[1] - p.p0[1]) * p.u[1]
-    return math.radians(_arc_sweep(p)) * p.radius
+    sweep = _arc_sweep(p)
+    if p.join and sweep > p.sweep0 + 1e-7:
+        return -math.radians(sweep - p.sweep0) * p.radius
+    return math.radians(sweep) * p.radius
 
 
 def _basic(segments: Sequence[Segment]) -> List[Segment]:
@@ -206,7 +212,7 @@ def _with_joins(pieces: List[_Piece], d: float, corner: str) -> List[_Piece]:
             # the corner arc turns like the drawn corner: clockwise for a left offset
             sw = -((-sw) % 360.0) if d > 0 else sw % 360.0
             out.append(_Piece(p.p1, q.p0, c, c, center=c, radius=abs(d), ccw=d < 0,
-                              sweep0=abs(sw), a0=a0))
+                              sweep0=abs(sw), a0=a0, join=True))
     return out
 
 
@@ -225,7 +231,13 @@ def _trim(pieces: List[_Piece]) -> List[_Piece]:
             pts = _intersections(a, b)
             if pts:                       # else: the emitter joins them by a line
                 mid = ((a.p1[0] + b.p0[0]) / 2, (a.p1[1] + b.p0[1]) / 2)
-                x = min(pts, key=lambda p: _dist(p, mid))
+
+                def score(x: Point) -> Tuple[int, float]:
+                    # prefer a meeting point that leaves both pieces valid
+                    ta, tb = _Piece(**{**a.__dict__, "p1": x}), _Piece(**{**b.__dict__, "p0": x})
+                    ok = (_length_along(ta) > 1e-9) + (_length_along(tb) > 1e-9)
+                    return (-ok, _dist(x, mid))
+                x = min(pts, key=score)
                 a.p1 = x
                 b.p0 = x
         lengths = [_length_along(p) for p in cur]
