@@ -63,3 +63,22 @@ def test_flame_job_run_job(doc, tmp_path):
     job = _flame_job(doc, str(tmp_path / "flame_run.nc"))
     pipeline.run_stage(job, "RunJob")
     _check(job)
+
+
+def test_cut_path_view_shows_the_tabs(doc, tmp_path, monkeypatch):
+    """The cut path view draws the tabs of the job's machine profile."""
+    import json
+    from LeatherCutWorkbench.document import viewproviders
+    d = load_profile("flame_plasma").to_json()
+    d.update(name="flame_tabs", tab_count=2, tab_width=1.5)
+    monkeypatch.setenv("LEATHERCUT_MACHINES", str(tmp_path))
+    (tmp_path / "flame_tabs.json").write_text(json.dumps(d))
+    job = _flame_job(doc, str(tmp_path / "flame.nc"))
+    job.PostMachine = "flame_tabs"
+    for stage in ("Import", "Recognise", "Plan"):
+        pipeline.run_stage(job, stage)
+    plan = pipeline.stored_plan(job)
+    bars = viewproviders._tab_moves(objects.stage_object(job, "CutPath"), plan)
+    outers = sum(1 for it in plan.items if it.kind == "outer")
+    assert len(bars) == 2 * outers
+    assert all(abs(((a[0] - b[0]) ** 2 + (a[1] - b[1]) ** 2) ** 0.5 - 1.5) < 0.2 for a, b in bars)
