@@ -113,12 +113,13 @@ def run_job(path: str, options: Optional[JobOptions] = None,
     drawing, recognition = load_and_recognise(path, options, progress)
     layout, parts, chains = arrange(recognition, options, progress)
     report(progress, 0.7, "planning the cut path")
+    # the parts as the machine's tool follows them (kerf, direction, leads)
     tool_parts, tool_findings = options.prepare(parts, layout) if options.prepare else (parts, [])
     cut_plan = plan(tool_parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    cut_plan.findings[:0] = tool_findings
     findings = list(drawing.findings) + list(recognition.findings)
     if layout is not None:
         findings += layout.findings
-    findings += tool_findings
     findings += cut_plan.findings
     report(progress, 1.0, "job planned")
     return JobResult(path, drawing, recognition, layout, parts, cut_plan, findings)
