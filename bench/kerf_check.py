@@ -41,12 +41,13 @@ def main():
         res = job(BAG, prof)
         row(f"bag.dxf, flame_plasma, {corners} corners", res.parts_to_cut,
             traced_moves(gcode.export(res.plan, prof), prof), prof)
-    prof = torch(kerf=0.5)
     _, rec = load_and_recognise(ARCS, JobOptions())
     parts = spread(rec.active_parts())
-    cut = plan(compensate(parts, prof)[0], [], PlanOptions(method="nn"))
-    row("deepnest sample (119 arcs), spread apart", parts,
-        traced_moves(gcode.export(cut, prof), prof), prof)
+    for kerf in (0.5, 1.5):
+        prof = torch(kerf=kerf)
+        cut = plan(compensate(parts, prof)[0], [], PlanOptions(method="nn"))
+        row("deepnest sample (119 arcs), spread apart", parts,
+            traced_moves(gcode.export(cut, prof), prof), prof)
     try:
         from test_post_kerf_rs274 import RS274, canon_feeds
         from test_post_rs274 import run_rs274
