@@ -62,13 +62,16 @@ def run(args: argparse.Namespace) -> Report:
     data["machine"] = profile.name
     data["tools"] = tool_export.tool_report(tools, profile)
     data["findings"] += [f.to_json() for f in tools.findings]
+    from ..post.compensation import summary
+    data["tool_path"] = summary(result.plan, profile)
     data["outputs"] = paths
     # atomic writes (temp file + fsync + rename); job.nc sealed with its end marker
     write_job_file(paths["job.nc"], text_nc, gcode=True)
     write_file(paths["preview.svg"], svg_preview.render(tools.main.plan(result.plan.home),
                                                         result.parts_to_cut,
                                                         title=os.path.basename(args.file),
-                                                        tools=tool_export.preview_tools(tools)))
+                                                        tools=tool_export.preview_tools(tools),
+                                                        profile=profile))
     write_file(paths["report.json"], json.dumps(data, indent=2) + "\n")
     c = data["counts"]
     lines = [

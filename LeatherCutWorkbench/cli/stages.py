@@ -66,6 +66,9 @@ def job_options(args: argparse.Namespace, before: str, machine: Any = None) -> J
     opts.sizes = getattr(args, "recognise_sizes", None)
     opts.quantities = getattr(args, "recognise_quantities", None)
     opts.log = _warn
+    if machine is not None:
+        from ..post.compensation import apply_to_job
+        apply_to_job(opts, machine)
     return opts
 
 

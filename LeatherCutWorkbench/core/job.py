@@ -12,7 +12,7 @@ importing this module costs nothing.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 from .geometry import Transform2D, bbox
 from .model import CutPlan, Drawing, Finding, Layout, OpenChain, Part, Recognition
@@ -49,6 +49,9 @@ class JobOptions:
     sizes: Optional[List[str]] = None
     #: with the defaults: part id -> quantity to cut (copies when nested)
     quantities: Optional[Dict[str, int]] = None
+    #: parts, layout -> (parts as the tool follows them, findings); set from the
+    #: machine profile (kerf, cut direction, lead-ins: post/compensation.py)
+    prepare: Optional[Callable[[List[Part], Optional[Layout]], Tuple[List[Part], List[Finding]]]] = None
 
 
 @dataclass
@@ -168,7 +171,10 @@ def plan_arranged(recognition: Recognition, options: JobOptions,
 
     layout, parts, chains = arrange(recognition, options, progress)
     report(progress, 0.7, "planning the cut path")
-    cut_plan = plan(parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    # the parts as the machine's tool follows them (kerf, direction, leads)
+    tool_parts, tool_findings = options.prepare(parts, layout) if options.prepare else (parts, [])
+    cut_plan = plan(tool_parts, chains, options.plan or PlanOptions(), _scaled(progress, 0.7, 1.0))
+    cut_plan.findings[:0] = tool_findings
     return layout, parts, cut_plan
 
 

@@ -444,6 +444,7 @@ class CutItem(_Path):
     segments: List[Segment]
     lead_in_count: int = 0
     lifts: List[int] = field(default_factory=list)
+    lead_out_count: int = 0        # trailing segments that are the lead-out
 
 
 

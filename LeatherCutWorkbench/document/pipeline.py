@@ -310,6 +310,10 @@ def _nest_prepare(job):
     parts = rec.active_parts()
     if not parts:
         raise InputError("no parts to nest: every part is excluded")
+    prof = job_profile(job)
+    if prof is not None:
+        from ..post.compensation import reserve_in_nesting
+        reserve_in_nesting(opts, prof)
     return parts, opts
 
 
@@ -447,7 +451,7 @@ def job_options(job, nest_again: bool = False):
     from ..core.job import JobOptions
     nested = job.NestContainer != "none"
     layout = current_layout(job) if nested and not nest_again else None
-    return JobOptions(
+    opts = JobOptions(
         import_=stage_options(job, "Import"), recognise=stage_options(job, "Recognise"),
         nest=stage_options(job, "Nest") if nested else None,
         plan=with_machine(stage_options(job, "Plan"), job),
@@ -455,6 +459,12 @@ def job_options(job, nest_again: bool = False):
         decisions={o.FlagId: o.Decision for o in flag_objects(job)},
         layout=layout, allow_invalid_layout=bool(getattr(job, "AllowInvalidLayout", False)),
         log=_log_override, part_choices=part_objects.choices_of(job))
+    prof = job_profile(job)
+    if prof is not None:
+        # kerf, cut direction and lead-ins of the machine (post/compensation.py)
+        from ..post.compensation import apply_to_job
+        apply_to_job(opts, prof)
+    return opts
 
 
 def _log_override(message: str) -> None:
@@ -489,6 +499,14 @@ def check_gate(job) -> None:
 
 def _plan_prepare(job):
     return effective_recognition(job), _kept_layout_options(job)
+
+
+def job_profile(job):
+    """The job's machine profile, or None (no machine chosen, post not available)."""
+    if not getattr(job, "PostMachine", "") or not available("Post"):
+        return None
+    from ..post.profiles import load_profile
+    return load_profile(job.PostMachine)
 
 
 def with_machine(opts, job):

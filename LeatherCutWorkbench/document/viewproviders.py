@@ -221,9 +221,14 @@ class CutPathViewProvider(ViewProvider):
             moves = _polyline_moves([it.segments for it in plan.items if it.kind == kind])
             if moves:
                 self.overlay.addChild(_lines(moves, style.colour(style_kind), 0xFFFF, 2.0))
-        leads = _polyline_moves([it.segments[:it.lead_in_count] for it in plan.items if it.lead_in_count])
+        leads = _polyline_moves([it.segments[:it.lead_in_count] for it in plan.items if it.lead_in_count]
+                                + [it.segments[len(it.segments) - it.lead_out_count:]
+                                   for it in plan.items if it.lead_out_count])
         if leads:
             self.overlay.addChild(_lines(leads, style.colour("lead_in"), 0xFFFF, 3.0))
+        tabs = _tab_moves(obj, plan)
+        if tabs:
+            self.overlay.addChild(_lines(tabs, (0.0, 0.0, 0.0), 0xFFFF, 6.0))
         if getattr(vobj, "ShowIdleMoves", True):
             self.overlay.addChild(_lines(plan.idle_moves(), style.colour("idle"), 0x0F0F, 1.5))
         if getattr(vobj, "ShowEntryPoints", True):
@@ -232,6 +237,22 @@ class CutPathViewProvider(ViewProvider):
         if getattr(vobj, "ShowOrderNumbers", True):
             labels = [(str(i + 1), it.start) for i, it in enumerate(plan.items)]
             self.overlay.addChild(_labels(labels, (0.0, 0.0, 0.0), size))
+
+
+def _tab_moves(obj, plan) -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:
+    """Tabs of the job's machine profile (post/tabs.py) as short thick bars
+    over the path; none when the profile has no tabs or cannot be read."""
+    job = tree.job_of(obj)
+    try:
+        from ..post.profiles import load_profile
+        from ..post.tabs import plan_tabs, point_along
+        prof = load_profile(job.PostMachine) if job is not None and job.PostMachine else None
+    except Exception:  # no post package or an unreadable profile: nothing to show
+        return []
+    if prof is None:
+        return []
+    return [(point_along(plan.items[i].segments, a), point_along(plan.items[i].segments, b))
+            for i, spans in plan_tabs(plan, prof).items() for a, b in spans]
 
 
 def _polyline_moves(paths) -> List[Tuple[Tuple[float, float], Tuple[float, float]]]:

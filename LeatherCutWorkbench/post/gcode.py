@@ -257,6 +257,9 @@ def build_program(plan: CutPlan, profile: MachineProfile,
             prog.add(f"G4 P{fmt(m.seconds, 3)}", m.seg)
         elif m.kind == "sync":
             prog.add("G4 P0", m.seg)
+        elif m.kind == "comp":            # controller kerf compensation (LinuxCNC)
+            prog.add({"left": f"G41.1 D{fmt(profile.kerf, d)}",
+                      "right": f"G42.1 D{fmt(profile.kerf, d)}"}.get(m.name, "G40"), m.seg)
         if m.heading is not None:
             heading = m.heading
     for line in expand(profile.footer, profile):

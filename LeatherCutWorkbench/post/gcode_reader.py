@@ -187,7 +187,7 @@ class Interpreter:
                     raise GcodeError(25, f"{letter} twice", line_no)
                 if letter in ALL_AXES and letter not in self.axes:
                     raise GcodeError(20, f"no {letter} axis", line_no)
-                if letter not in self.axes and letter not in "FSPLQEIJKRT":
+                if letter not in self.axes and letter not in "FSPLQEIJKRTD":
                     raise GcodeError(20, f"word {letter}", line_no)
                 vals[letter] = v
         if "R" in vals:
@@ -304,7 +304,7 @@ class Interpreter:
             return "motion"
         table = {4.0: "nonmodal", 17.0: "plane", 18.0: "plane", 19.0: "plane",
                  20.0: "units", 21.0: "units", 90.0: "distance", 91.0: "distance",
-                 94.0: "feedmode", 40.0: "cutter", 49.0: "tlo", 54.0: "wcs", 80.0: "motion_cancel"}
+                 94.0: "feedmode", 40.0: "cutter", 41.1: "cutter", 42.1: "cutter", 49.0: "tlo", 54.0: "wcs", 80.0: "motion_cancel"}
         if code not in table:
             raise GcodeError(20, f"G{code:g}", line_no)
         return table[code]

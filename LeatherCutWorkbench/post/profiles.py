@@ -99,6 +99,21 @@ class MachineProfile:
     tool_select: List[str] = field(default_factory=list)        # lines selecting the main tool
     notch_length: float = 3.0             # mm, a notch cut by the knife: slit length
     source: str = ""                      # file the profile came from
+    # kerf compensation, cut direction, lead-ins/outs, tabs (post/compensation.py)
+    kerf: float = 0.0                     # mm removed by the tool (torch kerf width)
+    kerf_mode: str = "path"               # path (pre-offset) | controller (G41.1/G42.1 + G40)
+    kerf_corners: str = "round"           # round | extended: outside corners of the offset
+    outer_direction: str = ""             # cw | ccw | drawn ("" = torch cw, others drawn)
+    hole_direction: str = ""              # cw | ccw | drawn ("" = torch ccw, others drawn)
+    lead_in: str = ""                     # none | line | arc ("" = torch arc, others none)
+    lead_in_length: float = 5.0           # mm along the lead-in
+    lead_in_angle: float = 45.0           # degrees: line to the tangent, or arc sweep
+    lead_out: str = ""                    # none | line | arc ("" = same as lead_in on a torch)
+    lead_out_length: float = 2.0          # mm
+    lead_out_angle: float = 45.0          # degrees
+    tab_count: int = 0                    # tabs per outer contour (0 = none)
+    tab_spacing: float = 0.0              # mm between tabs; > 0 overrides tab_count
+    tab_width: float = 1.0                # mm left uncut per tab
 
     # ---------------------------------------------------------------- helpers
     @property
@@ -307,9 +322,35 @@ def _validate(p: MachineProfile, source: str) -> None:
         fail("swivel_angle must lie in [0, 180] degrees")
     from .tools import validate_profile
     validate_profile(p, source)
+    _validate_compensation(p, fail)
     if p.sync_every_segment and not p.is_gcode:
         fail(f"sync_every_segment needs a G-code dialect (G4 P0); {p.dialect} has no "
              "synchronising command")
+
+
+def _validate_compensation(p: MachineProfile, fail) -> None:
+    """The kerf / direction / lead / tab fields (docs/MACHINES.md, "Kerf, cut
+    direction, lead-ins and tabs")."""
+    choices = {"kerf_mode": ("path", "controller"), "kerf_corners": ("round", "extended"),
+               "outer_direction": ("", "cw", "ccw", "drawn"),
+               "hole_direction": ("", "cw", "ccw", "drawn"),
+               "lead_in": ("", "none", "line", "arc"), "lead_out": ("", "none", "line", "arc")}
+    for key, allowed in choices.items():
+        if getattr(p, key) not in allowed:
+            fail(f"{key} must be one of {', '.join(a for a in allowed if a)}, not {getattr(p, key)!r}")
+    for key in ("kerf", "lead_in_length", "lead_out_length", "tab_spacing"):
+        if not 0.0 <= getattr(p, key) < 1000.0:
+            fail(f"{key} must lie in [0, 1000) mm, not {getattr(p, key):g}")
+    for key in ("lead_in_angle", "lead_out_angle"):
+        if not 0.0 < getattr(p, key) <= 180.0:
+            fail(f"{key} must lie in (0, 180] degrees, not {getattr(p, key):g}")
+    if p.tab_count < 0:
+        fail("tab_count must not be negative")
+    if (p.tab_count or p.tab_spacing) and not 0.0 < p.tab_width < 100.0:
+        fail("tab_width must lie in (0, 100) mm when tabs are asked for")
+    if p.kerf_mode == "controller" and p.kerf > 0 and p.dialect != "linuxcnc":
+        fail(f"kerf_mode 'controller' (G41.1/G42.1 cutter compensation) needs the linuxcnc "
+             f"dialect; {p.dialect} has none: use kerf_mode 'path'")
 
 
 def save_user_profile(profile: MachineProfile) -> str:

@@ -4,12 +4,15 @@ Drawn in machine coordinates (mm, Y up; the SVG flips Y so the picture looks
 like the table seen from above).  Colours follow the legend in
 docs/WORKBENCH.md: outer cuts blue, holes red, open chains grey, lead-ins
 orange, idle moves dashed green, entry points black dots, order numbers next to
-each entry.
+each entry.  Kerf jobs: the cut lines are the compensated tool path (the
+filled parts are the drawn outlines, so the half-kerf gap shows), lead-outs
+are orange like lead-ins, and tabs (given the machine profile) are drawn as
+short black bars across the path.
 """
 
 from __future__ import annotations
 
-from typing import Iterable, List, Sequence, Tuple
+from typing import Any, Iterable, List, Optional, Sequence, Tuple
 from xml.sax.saxutils import escape
 
 from ..core.geometry import Point, bbox, path_points
@@ -18,6 +21,7 @@ from ..core.model import CutPlan, Part
 KIND_COLOURS = {"outer": "#1f5fbf", "hole": "#c62828", "open": "#757575"}
 LEAD_IN_COLOUR = "#ef6c00"
 IDLE_COLOUR = "#2e7d32"
+TAB_COLOUR = "#000000"
 PART_FILL = "#f3e9dc"
 
 
@@ -27,10 +31,12 @@ def _path_d(pts: Sequence[Point], closed: bool) -> str:
 
 
 def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "",
-           tools: Sequence[Tuple[str, str, list, list]] = ()) -> str:
+           tools: Sequence[Tuple[str, str, list, list]] = (),
+           profile: Optional[Any] = None) -> str:
     """Return the SVG document text for ``plan`` (and the filled ``parts``).
     ``tools``: (name, colour, items, points) of the further tools of a
-    multi-tool job, drawn in their own colour (lines, strikes as rings)."""
+    multi-tool job, drawn in their own colour (lines, strikes as rings); with
+    the machine ``profile`` its tabs are drawn too."""
     parts = list(parts)
     all_pts: List[Point] = [plan.home]
     for it in plan.items:
@@ -61,10 +67,12 @@ def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "",
     out.append("</g>")
     out.append(f'<g id="cuts" fill="none" stroke-width="{1.5 * stroke:.3f}">')
     for it in plan.items:
-        lead, body = it.segments[: it.lead_in_count], it.segments[it.lead_in_count:]
-        if lead:
-            out.append(f'<path class="lead-in" stroke="{LEAD_IN_COLOUR}" '
-                       f'd="{_path_d(path_points(lead, 0.05), False)}"/>')
+        n_out = len(it.segments) - it.lead_out_count
+        lead, body = it.segments[: it.lead_in_count], it.segments[it.lead_in_count:n_out]
+        for cls, piece in (("lead-in", lead), ("lead-out", it.segments[n_out:])):
+            if piece:
+                out.append(f'<path class="{cls}" stroke="{LEAD_IN_COLOUR}" '
+                           f'd="{_path_d(path_points(piece, 0.05), False)}"/>')
         if body:
             colour = KIND_COLOURS.get(it.kind, KIND_COLOURS["open"])
             out.append(f'<path class="{it.kind}" data-contour="{escape(it.contour_id)}" '
@@ -76,6 +84,8 @@ def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "",
         out += [f'<path d="{_path_d(path_points(it.segments, 0.05), False)}"/>' for it in items]
         out += [f'<circle cx="{x:.3f}" cy="{-y:.3f}" r="{2 * stroke:.3f}"/>' for x, y in points]
         out.append("</g>")
+    if profile is not None:
+        out.extend(_tabs(plan, profile, stroke))
     out.append(f'<g id="order" font-family="sans-serif" font-size="{font:.3f}">')
     for n, it in enumerate(plan.items, start=1):
         x, y = it.start
@@ -88,8 +98,26 @@ def render(plan: CutPlan, parts: Iterable[Part] = (), title: str = "",
     return "\n".join(out) + "\n"
 
 
+def _tabs(plan: CutPlan, profile: Any, stroke: float) -> List[str]:
+    """The tabs of ``plan`` for ``profile`` as bars across the path."""
+    from .tabs import plan_tabs, point_along
+
+    gaps = plan_tabs(plan, profile)
+    if not gaps:
+        return []
+    out = [f'<g id="tabs" stroke="{TAB_COLOUR}" stroke-width="{4 * stroke:.3f}">']
+    for i, intervals in sorted(gaps.items()):
+        segs = plan.items[i].segments
+        for a, b in intervals:
+            pts = [point_along(segs, a), point_along(segs, b)]
+            out.append(f'<path class="tab" d="{_path_d(pts, False)}"/>')
+    out.append("</g>")
+    return out
+
+
 def legend() -> List[Tuple[str, str]]:
     """(what, colour) pairs used by the picture, for documentation and the GUI."""
     return [("outer contour cut", KIND_COLOURS["outer"]), ("hole cut", KIND_COLOURS["hole"]),
-            ("open chain cut", KIND_COLOURS["open"]), ("lead-in", LEAD_IN_COLOUR),
+            ("open chain cut", KIND_COLOURS["open"]), ("lead-in / lead-out", LEAD_IN_COLOUR),
+            ("tab (uncut)", TAB_COLOUR),
             ("idle move (dashed)", IDLE_COLOUR), ("part material", PART_FILL)]

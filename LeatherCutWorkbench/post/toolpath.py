@@ -19,7 +19,12 @@ turned in the air and plunged again before every joint whose heading change
 exceeds ``profile.lift_angle``; the planner's ``CutItem.lifts`` are honoured as
 well (the union of both is used), so a planner run with a smaller angle can only
 add lifts, never remove one the machine needs.  Torches and drag knives never
-lift inside an item.
+lift inside an item, except over a tab (profile ``tab_count`` / ``tab_spacing``,
+:mod:`.tabs`): up, rapid across the tab, down and pierce again.
+
+Controller kerf compensation (profile ``kerf_mode == "controller"``): a
+``comp`` move (``name`` ``left`` / ``right``, the side the scrap lies on)
+before the tool goes down on a closed contour, ``comp`` ``off`` after it.
 """
 
 from __future__ import annotations
@@ -104,7 +109,7 @@ def _pieces(seg: Segment, profile: MachineProfile) -> List[Segment]:
 def _overcut(item: CutItem, length: float) -> List[Segment]:
     """The first ``length`` mm of a closed contour (after its lead-in), cut again
     past the entry so the start and end of the cut overlap."""
-    contour = item.segments[item.lead_in_count:]
+    contour = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
     out: List[Segment] = []
     left = length
     for seg in contour:
@@ -120,7 +125,7 @@ def _overcut(item: CutItem, length: float) -> List[Segment]:
 
 
 def _is_closed(item: CutItem) -> bool:
-    contour = item.segments[item.lead_in_count:]
+    contour = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
     return item.kind in ("outer", "hole") and bool(contour) and \
         dist(contour[0].start, contour[-1].end) < 1e-6
 
@@ -134,8 +139,12 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
     rapid starts with the knife up; headings change by at most 180 degrees per
     move; with a tangential knife no joint inside a cut turns by more than the
     lift angle without an up/turn/down."""
+    from . import tabs
+    from .cut_direction import scrap_on_left
     tp = Toolpath()
     mv = tp.moves
+    tab_gaps = tabs.plan_tabs(plan, profile)
+    controller = profile.kerf_mode == "controller" and profile.kerf > 0
     tangential = profile.tangential
     oc = profile.overcut if overcut is None else overcut
     here: Point = plan.home
@@ -159,15 +168,20 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         ids = [seg_id(i, j) for j in range(1, len(segs) + 1)]
         tp.segment_ids.extend(ids)
         lift_before = set(item.lifts)
-        extra: List[Segment] = _overcut(item, oc) if oc > 0 and _is_closed(item) else []
-        work: List[Tuple[Segment, str, bool]] = [
-            (s, ids[j], j in lift_before) for j, s in enumerate(segs)]
-        work += [(s, ids[-1], False) for s in extra]
+        # controller compensation trims the contour's first piece where a lead
+        # meets it at an angle: the overcut (at least one kerf) cuts that
+        # stretch too.  A lead-out starts at the entry: no overcut then.
+        oc_item = 0.0 if item.lead_out_count else max(oc, profile.kerf) if controller else oc
+        extra: List[Segment] = _overcut(item, oc_item) if oc_item > 0 and _is_closed(item) else []
+        work: List[Tuple[Segment, str, bool, bool]] = [
+            (s, ids[j], j in lift_before, True) for j, s in enumerate(segs)]
+        work += [(s, ids[-1], False, True) for s in extra]
         if profile.blade_offset > 0:       # drag knife: the axis path that makes the tip cut `work`
             pieces, blade = drag_knife.compensate([w[0] for w in work], profile.blade_offset,
                                                   profile.swivel_angle, blade,
                                                   drag_knife.swivel_tolerance(profile))
-            work = [(s, work[k][1], False) for s, k in pieces]
+            work = [(s, work[k][1], False, True) for s, k in pieces]
+        work = tabs.split(work, tab_gaps.get(i - 1, ()))
         if not work:
             continue
         first_pieces = _pieces(work[0][0], profile)
@@ -184,16 +198,41 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
         add("rapid", seg=ids[0], x=start[0], y=start[1], heading=heading,
             feed=profile.rapid_feed, item=i)
         here = start
+        comp = controller and _is_closed(item)
+        comp_side = ""
+        if comp:
+            body = item.segments[item.lead_in_count:len(item.segments) - item.lead_out_count]
+            comp_side = "left" if scrap_on_left(body, item.kind) else "right"
         if profile.tool_on:
             add("io", seg=ids[0], name="tool_on", item=i)
         add("down", seg=ids[0], item=i)
         if profile.pierce_delay > 0:
             add("dwell", seg=ids[0], seconds=profile.pierce_delay, item=i)
         first = True
-        for w, (seg, sid, planned_lift) in enumerate(work):
+        in_tab = False
+        for w, (seg, sid, planned_lift, cutting) in enumerate(work):
+            if not cutting:               # a tab: across it with the tool up
+                if not in_tab:
+                    add("up", seg=sid, item=i)
+                in_tab = True
+                here = seg.end
+                add("rapid", seg=sid, x=here[0], y=here[1], heading=heading,
+                    feed=profile.rapid_feed, item=i)
+                continue
+            if in_tab:                    # after a tab: down and pierce again
+                in_tab = False
+                add("down", seg=sid, item=i)
+                if profile.pierce_delay > 0:
+                    add("dwell", seg=sid, seconds=profile.pierce_delay, item=i)
             for k, piece in enumerate(_pieces(seg, profile)):
                 if piece.length <= 1e-9:
                     continue
+                if comp_side and w < item.lead_in_count and isinstance(piece, LineSeg) \
+                        and piece.length > 0.55 * profile.kerf:
+                    # LinuxCNC enters compensation on a straight move longer
+                    # than the tool radius: the first such move of the lead-in
+                    add("comp", seg=sid, name=comp_side, item=i)
+                    comp_side = ""
                 if tangential:
                     h_start = piece.start_heading() + profile.heading_offset
                     turn = turn_angle(heading, h_start) if heading is not None else 0.0
@@ -219,6 +258,14 @@ def build_toolpath(plan: CutPlan, profile: MachineProfile, overcut: Optional[flo
             if profile.sync_every_segment and (w + 1 == len(work) or work[w + 1][1] != sid):
                 # the segment's last line: its ok means the segment was executed
                 add("sync", seg=sid, item=i)
+        if comp_side:
+            from ..core.errors import InputError
+            raise InputError(f"{item.kind} contour {item.contour_id} has no straight lead-in move "
+                             f"longer than half the kerf to enter cutter compensation on (profile "
+                             f"field kerf_mode 'controller'): give it a lead-in or use kerf_mode "
+                             f"'path'", source=profile.source or profile.name)
+        if comp:
+            add("comp", name="off", item=i)
         add("up", item=i)
         if profile.cooling_delay > 0:
             add("dwell", seconds=profile.cooling_delay, item=i)

@@ -85,7 +85,7 @@ class PlanItem:
         entry = body[0].start
         return CutItem(contour_id=self.contour_id, part_id=self.part_id, kind=self.kind,
                        entry=entry, segments=segs, lead_in_count=len(lead),
-                       lifts=lift_indices(segs, lift_angle))
+                       lifts=lift_indices(segs, lift_angle), lead_out_count=len(tail))
 
 
 def _joined(at: Point, segs: Sequence[Segment]) -> List[Segment]:
