@@ -140,13 +140,17 @@ def _parts_from_args(args, opts):
 
 
 def run(args: argparse.Namespace) -> Report:
+    import time
+
     from ..core.nesting import nest
     from ..core.nesting import outputs
 
+    t_start = time.monotonic()          # --time covers reading the drawing too
     opts = options_from_args(args)
     if opts is None:
         raise InputError("no container: give --sheet WxH, --strip W, --hide HIDE.dxf or --esicup FILE.json")
     parts, source, findings = _parts_from_args(args, opts)
+    opts.started_at = t_start
     if args.nest_copies is not None:
         if args.nest_copies < 1:
             raise InputError(f"--copies must be >= 1, got {args.nest_copies}")

@@ -22,7 +22,7 @@ finding (that would be a bug; it never happens in the tests).
 
 from __future__ import annotations
 
-from typing import List, Optional, Sequence
+from typing import Callable, List, Optional, Sequence
 
 from ..errors import InputError
 from ..geometry import Transform2D
@@ -36,11 +36,17 @@ __all__ = ["nest", "placed_parts", "NestOptions", "ContainerSpec", "parse_rotati
            "read_hide_dxf", "check_layout"]
 
 
-def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[ProgressFn] = None) -> Layout:
+def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[ProgressFn] = None,
+         on_best: Optional[Callable[[Layout], None]] = None,
+         stop: Optional[Callable[[], bool]] = None) -> Layout:
     """Place every copy of every non-excluded part (see module doc).
 
-    Raises InputError for unusable options or parts, CancelledError when
-    ``progress`` returns False."""
+    Anytime: ``options.time_budget`` seconds cover everything from this call
+    on; ``on_best(layout)`` (own engine) receives every better layout found
+    (unchecked, at most twice a second) so a view can show it live;
+    ``stop()`` returning True ends the search early and keeps the best layout
+    so far.  Raises InputError for unusable options or parts, CancelledError
+    when ``progress`` returns False (Cancel discards)."""
     options.validate()
     active = [p for p in parts if not p.excluded]
     ids = [p.id for p in active]
@@ -52,7 +58,7 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
         layout = run_sparrow(active, options, progress)
     else:
         from .engine import run_own
-        layout = run_own(active, options, progress)
+        layout = run_own(active, options, progress, on_best, stop)
     report(progress, 0.99, "checking the layout")
     problems = check_layout(active, layout, spacing=options.spacing, margin=options.margin,
                             tol=options.tolerance, chord_tol=options.chord_tol,

@@ -21,7 +21,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pyclipper
 
-from .nfp import NfpCache
+from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
 
 _NZ = pyclipper.PFT_NONZERO
@@ -47,15 +47,17 @@ class Placer:
 
     def __init__(self, variants: Sequence[Variant], type_variants: Sequence[Sequence[int]],
                  type_grade: Sequence[int], bins: Sequence[BinSpec], open_new: bool,
-                 max_bins: Optional[int], nfps: Optional[NfpCache] = None):
+                 max_bins: Optional[int], nfps: Optional[NfpCache] = None,
+                 clock: Optional[Clock] = None):
         self.variants = variants
         self.type_variants = type_variants
         self.type_grade = type_grade
         self.bin_specs = list(bins)
         self.open_new = open_new
         self.max_bins = max_bins
-        self.nfps = nfps or NfpCache(variants)
-        self._ifp_cache: Dict[Tuple[int, int], List[IntPath]] = {}
+        self.nfps = nfps or NfpCache(variants, clock)
+        self.clock = self.nfps.clock
+        self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
 
     # ---------------------------------------------------------------- regions
     def _spec(self, b: int) -> BinSpec:
@@ -67,12 +69,17 @@ class Placer:
         if spec.kind == "hide":
             from .nfp import region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
-            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index)
+            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
-                outers, obstacles = spec.regions[rk]
-                hit = region_ifp(outers, obstacles, v.core)
-                self._ifp_cache[key] = hit
+                # out of time: the region of the convex hull (a subset, still valid)
+                exact = self.clock.exact()
+                key = key[:2] + (exact,)
+                hit = self._ifp_cache.get(key)
+                if hit is None:
+                    outers, obstacles = spec.regions[rk]
+                    hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull)
+                    self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
         if spec.kind == "strip":
@@ -131,8 +138,13 @@ class Placer:
 
     def place(self, sequence: Sequence[Tuple[int, Optional[int]]],
               prefix: Optional["Trace"] = None, keep: int = 0,
-              give_up: Optional[Tuple[float, Sequence[float]]] = None) -> Optional["Trace"]:
+              give_up: Optional[Tuple[float, Sequence[float]]] = None,
+              abortable: bool = True) -> Optional["Trace"]:
         """Place ``sequence`` (type index, forced variant or None) in order.
+
+        Returns None when the fill is abandoned: it left out more area than
+        ``give_up`` = (limit, area per type) allows, or (``abortable``) the
+        clock's ``stop_at`` passed.
 
         With ``prefix`` (the trace of an earlier call) and ``keep`` = k, the first
         k items are taken as placed there (the search changes only later items).
@@ -149,6 +161,8 @@ class Placer:
         if give_up is not None:
             left_out = sum(give_up[1][sequence[p[0]][0]] for p in placements if p[1] < 0)
         for si in range(len(placements), len(sequence)):
+            if abortable and self.clock.expired():
+                return None
             t, forced = sequence[si]
             cands = [forced] if forced is not None else self.type_variants[t]
             done = False

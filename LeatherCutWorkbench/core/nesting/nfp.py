@@ -15,6 +15,12 @@ out of the solid NFP, so one region per pair covers both cases.
 When both rings are convex the sum is simply the convex hull of all vertex sums
 (scipy), several times faster and exact in integers.
 
+Coarse no-fit polygons (:class:`NfpCache` under time pressure, see
+:class:`Clock`) are the sums of the two variants' convex hulls: a superset of
+the exact NFP, so a layout built with them is still valid, only less dense.
+Computing one costs a fraction of a millisecond instead of the 5-30 ms of an
+exact sum of two arc-rich outlines.
+
 The inner-fit region of a container region R (outer rings, defect / forbidden
 holes) is built the same way: R's outer ring shifted by -b0 minus the sweep
 along its boundary, minus the full NFP of every hole.
@@ -25,11 +31,15 @@ the non-zero fill rule, so a list of regions-with-holes can be added as is.
 
 from __future__ import annotations
 
-from typing import Dict, List, Sequence, Tuple
+import math
+import time
+from dataclasses import dataclass
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import pyclipper
 
+from .convex import Form, convex_pieces, convex_sum, edge_form, sum_forms
 from .shapes import IntPath, Variant
 
 _NZ = pyclipper.PFT_NONZERO
@@ -72,22 +82,35 @@ def is_convex(ring: IntPath) -> bool:
     return bool((cross >= 0).all())
 
 
-def _convex_sum(a_outer: IntPath, nb: IntPath) -> IntPath:
-    """Minkowski sum of two convex rings: the convex hull of all vertex sums
-    (exact integers, counter-clockwise)."""
-    from scipy.spatial import ConvexHull
-    a = np.asarray(a_outer, dtype=np.int64)
-    b = np.asarray(nb, dtype=np.int64)
-    pts = (a[:, None, :] + b[None, :, :]).reshape(-1, 2)
-    hull = ConvexHull(pts.astype(np.float64))
-    return pts[hull.vertices].tolist()
+Forms = Optional[List[Form]]
 
 
-def solid_nfp(a_outer: IntPath, b_outer: IntPath) -> List[IntPath]:
-    """A (+) (-B) for two simple CCW rings: translations of B that overlap A."""
+def piece_forms(ring: IntPath, negate: bool = False) -> Forms:
+    """Edge forms of the convex pieces of ``ring`` (of ``-ring`` with
+    ``negate``), or None when it cannot be decomposed."""
+    pieces = convex_pieces(ring)
+    if pieces is None:
+        return None
+    return [edge_form(_neg(p) if negate else p) for p in pieces]
+
+
+def solid_nfp(a_outer: IntPath, b_outer: IntPath, a_forms: Forms = None,
+              nb_forms: Forms = None) -> List[IntPath]:
+    """A (+) (-B) for two simple CCW rings: translations of B that overlap A.
+
+    ``a_forms`` / ``nb_forms``: edge forms of the convex pieces of A and of
+    -B (:func:`piece_forms`, computed here when not given); the sum is the
+    union of the pieces' convex sums.  When a ring cannot be decomposed
+    pyclipper's edge sweep is used."""
     nb = _neg(b_outer)
     if is_convex(a_outer) and is_convex(b_outer):
-        return [_convex_sum(a_outer, nb)]       # fast path: hull of vertex sums
+        return [convex_sum(a_outer, nb)]       # fast path: one convex sum
+    pa = a_forms if a_forms is not None else piece_forms(a_outer)
+    pb = nb_forms if nb_forms is not None else piece_forms(b_outer, negate=True)
+    if pa and pb:
+        sums = [sum_forms(x, y) for x in pa for y in pb]
+        outers = [p for p in union(sums) if pyclipper.Orientation(p)]
+        return [max(outers, key=pyclipper.Area)] if outers else []
     sweep = pyclipper.MinkowskiSum(nb, a_outer, True)
     base = _shift(a_outer, nb[0][0], nb[0][1])           # B's vertex inside A
     cover = _shift(nb, a_outer[0][0], a_outer[0][1])      # A's vertex inside B
@@ -111,9 +134,10 @@ def inner_fit(region_outer: IntPath, b_outer: IntPath) -> List[IntPath]:
     return difference([inside], band)
 
 
-def pair_nfp(a: Variant, b: Variant) -> List[IntPath]:
+def pair_nfp(a: Variant, b: Variant, a_forms: Forms = None,
+             nb_forms: Forms = None) -> List[IntPath]:
     """NFP of variant ``b`` around variant ``a`` with part-in-part islands."""
-    solid = solid_nfp(a.outer, b.outer)
+    solid = solid_nfp(a.outer, b.outer, a_forms, nb_forms)
     if not a.holes:
         return solid
     islands: List[IntPath] = []
@@ -142,26 +166,79 @@ def region_ifp(outers: Sequence[IntPath], obstacles: Sequence[IntPath], b_outer:
     return difference(fits, blocked) if blocked else fits
 
 
+@dataclass
+class Clock:
+    """Deadlines (``time.monotonic()`` seconds) the placer honours.
+
+    * ``stop_at`` -- an evaluation still running then is abandoned (the first
+      fill of a search is never abandoned, see ``exact_until``);
+    * ``exact_until`` -- exact NFPs / inner-fit regions not yet cached are
+      computed only before this; later the convex-hull ones are used (valid,
+      coarser, fast), so even a fill of hundreds of arc-rich parts ends soon."""
+
+    stop_at: float = math.inf
+    exact_until: float = math.inf
+    stop: "Callable[[], bool] | None" = None      # the user pressed Stop
+
+    def exact(self) -> bool:
+        """May an exact NFP still be computed?  (Not once past a deadline.)"""
+        if self.expired():
+            return False
+        return self.exact_until == math.inf or time.monotonic() < self.exact_until
+
+    def expired(self) -> bool:
+        if self.stop is not None and self.stop():
+            return True
+        return self.stop_at != math.inf and time.monotonic() > self.stop_at
+
+
 class NfpCache:
     """Pairwise NFPs of variants, computed on first use, as numpy arrays
-    (translation by a placement is then one vectorised add)."""
+    (translation by a placement is then one vectorised add).  While the
+    clock allows, exact; afterwards a pair not yet cached gets its coarse
+    (convex-hull) NFP."""
 
-    def __init__(self, variants: Sequence[Variant]):
+    def __init__(self, variants: Sequence[Variant], clock: "Clock | None" = None):
         self.variants = variants
+        self.clock = clock or Clock()
         self._cache: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
+        self._coarse: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
+        self._forms: Dict[int, Tuple[Form, Form, Forms, Forms]] = {}
+
+    def forms(self, v: int) -> Tuple[Form, Form, Forms, Forms]:
+        """Edge forms of variant ``v``: hull, -hull, convex pieces, -pieces (cached)."""
+        hit = self._forms.get(v)
+        if hit is None:
+            var = self.variants[v]
+            pieces = convex_pieces(var.outer)
+            hit = (edge_form(var.hull), edge_form(_neg(var.hull)),
+                   None if pieces is None else [edge_form(p) for p in pieces],
+                   None if pieces is None else [edge_form(_neg(p)) for p in pieces])
+            self._forms[v] = hit
+        return hit
 
     def get(self, a: int, b: int) -> Tuple[List[np.ndarray], Tuple[int, int, int, int]]:
         key = (a, b)
         hit = self._cache.get(key)
-        if hit is None:
-            paths = pair_nfp(self.variants[a], self.variants[b])
-            arrs = [np.asarray(p, dtype=np.int64) for p in paths if len(p) >= 3]
-            if arrs:
-                allp = np.vstack(arrs)
-                bb = (int(allp[:, 0].min()), int(allp[:, 1].min()),
-                      int(allp[:, 0].max()), int(allp[:, 1].max()))
-            else:
-                bb = (0, 0, -1, -1)
-            hit = (arrs, bb)
+        if hit is not None:
+            return hit
+        if self.clock.exact():
+            hit = _arrays(pair_nfp(self.variants[a], self.variants[b],
+                                   self.forms(a)[2], self.forms(b)[3]))
             self._cache[key] = hit
+            return hit
+        hit = self._coarse.get(key)
+        if hit is None:
+            hit = _arrays([sum_forms(self.forms(a)[0], self.forms(b)[1])])
+            self._coarse[key] = hit
         return hit
+
+
+def _arrays(paths: List[IntPath]) -> Tuple[List[np.ndarray], Tuple[int, int, int, int]]:
+    """Paths as int64 arrays plus their bounding box."""
+    arrs = [np.asarray(p, dtype=np.int64) for p in paths if len(p) >= 3]
+    if not arrs:
+        return arrs, (0, 0, -1, -1)
+    allp = np.vstack(arrs)
+    return arrs, (int(allp[:, 0].min()), int(allp[:, 1].min()),
+                  int(allp[:, 0].max()), int(allp[:, 1].max()))

@@ -85,6 +85,9 @@ class NestOptions:
       spacing offsets use it as arc tolerance.
     * ``tolerance`` -- the validity checker's length tolerance (mm): overlaps,
       protrusions and spacing shortfalls thinner than this are accepted.
+    * ``started_at`` -- ``time.monotonic()`` when the user asked for the nest
+      (the CLI: before reading the drawing); the time budget counts from there.
+      None: from the call of :func:`nest`.
     """
 
     container: ContainerSpec = field(default_factory=ContainerSpec)
@@ -101,6 +104,7 @@ class NestOptions:
     engine: str = "own"
     chord_tol: float = 0.05
     tolerance: float = 1e-3
+    started_at: Optional[float] = None
 
     def part_rotations(self, own: Optional[List[float]]) -> Optional[List[float]]:
         """The allowed angles of a part under these options (None = any angle)."""

@@ -11,7 +11,9 @@ origin -- in the engine's integer grid (pyclipper works on integers):
   clipped vertices can never create a real overlap),
 * ``holes``: the holes shrunk by the same amount (room for part-in-part),
 * ``core``: the true outline grown only by the chord error and one unit (for
-  hide regions, whose margins are applied to the region instead).
+  hide regions, whose margins are applied to the region instead),
+* ``hull`` / ``core_hull``: the convex hulls of ``outer`` / ``core`` (the
+  coarse geometry the engine falls back to when time runs short).
 
 Orientations that give the same shape up to a translation (a rectangle turned
 180 degrees, a disc turned any angle) are kept once.
@@ -66,6 +68,15 @@ class Variant:
     holes: List[IntPath]
     bbox: tuple  # (xmin, ymin, xmax, ymax) of ``outer``, grid units
     core: IntPath = field(default_factory=list)   # true outline grown by one grid unit
+    hull: IntPath = field(default_factory=list)   # convex hull of ``outer`` (CCW)
+    core_hull: IntPath = field(default_factory=list)   # convex hull of ``core`` (CCW)
+
+
+def convex_hull(ring: IntPath) -> IntPath:
+    """Convex hull of an integer ring, counter-clockwise (exact integers)."""
+    from scipy.spatial import ConvexHull
+    a = np.asarray(ring, dtype=np.int64)
+    return a[ConvexHull(a.astype(np.float64)).vertices].tolist()
 
 
 def _area(a: np.ndarray) -> float:
@@ -213,5 +224,6 @@ def make_variants(types: Sequence[PieceType], scale: float, half_gap: float,
                 xs = [p[0] for p in grown]
                 ys = [p[1] for p in grown]
                 out.append(Variant(len(out), ti, ang, m, grown, holes,
-                                   (min(xs), min(ys), max(xs), max(ys)), core))
+                                   (min(xs), min(ys), max(xs), max(ys)), core,
+                                   convex_hull(grown), convex_hull(core)))
     return out
