@@ -94,6 +94,19 @@ def piece_forms(ring: IntPath, negate: bool = False) -> Forms:
     return [edge_form(_neg(p) if negate else p) for p in pieces]
 
 
+def _tree_union(paths: List[IntPath], group: int = 8) -> List[IntPath]:
+    """Union of many overlapping convex rings, eight at a time (pyclipper is
+    about twice as fast on small groups as on hundreds of rings at once)."""
+    while len(paths) > group:
+        merged: List[IntPath] = []
+        for k in range(0, len(paths), group):
+            merged.extend(union(paths[k:k + group]))
+        if len(merged) >= len(paths):
+            break
+        paths = merged
+    return union(paths)
+
+
 def solid_nfp(a_outer: IntPath, b_outer: IntPath, a_forms: Forms = None,
               nb_forms: Forms = None) -> List[IntPath]:
     """A (+) (-B) for two simple CCW rings: translations of B that overlap A.
@@ -108,8 +121,8 @@ def solid_nfp(a_outer: IntPath, b_outer: IntPath, a_forms: Forms = None,
     pa = a_forms if a_forms is not None else piece_forms(a_outer)
     pb = nb_forms if nb_forms is not None else piece_forms(b_outer, negate=True)
     if pa and pb:
-        sums = [sum_forms(x, y) for x in pa for y in pb]
-        outers = [p for p in union(sums) if pyclipper.Orientation(p)]
+        outers = [p for p in _tree_union([sum_forms(x, y) for x in pa for y in pb])
+                  if pyclipper.Orientation(p)]
         return [max(outers, key=pyclipper.Area)] if outers else []
     sweep = pyclipper.MinkowskiSum(nb, a_outer, True)
     base = _shift(a_outer, nb[0][0], nb[0][1])           # B's vertex inside A
