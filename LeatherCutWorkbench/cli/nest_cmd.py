@@ -48,6 +48,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    metavar="DEG", help="angle step tried for parts that may turn freely (default 30)")
     g.add_argument("--mirror", dest="nest_mirror", action="store_true",
                    help="allow mirrored copies of every part")
+    g.add_argument("--grade", dest="nest_grades", action="append", default=[], metavar="PART=G",
+                   help="grade of a part (id or name; repeatable): a letter A-D (A best) or a "
+                        "number; on a hide it lies only on material of that grade or better")
     g.add_argument("--copies", dest="nest_copies", type=int, default=None, metavar="N",
                    help="nest N copies of every recognised part (default: each part's quantity)")
     g.add_argument(f"--{pre}time", dest="nest_time", type=non_negative, default=10.0, metavar="S",
@@ -94,12 +97,18 @@ def options_from_args(args: argparse.Namespace):
         free = rots_override is None
         if st is not None:
             step = st
+    grades: Dict[str, str] = {}
+    for item in getattr(args, "nest_grades", None) or []:
+        part, sep, grade = item.rpartition("=")
+        if not sep or not part.strip() or not grade.strip():
+            raise InputError(f"bad --grade {item!r}: use PART=G, e.g. P3=A or 'Vamp size 38=2'")
+        grades[part.strip()] = grade.strip()
     opts = NestOptions(container=spec, spacing=args.nest_spacing, margin=args.nest_margin,
                        rotation_step=step, rotations_override=rots_override, free_rotation=free,
                        mirror_override=True if args.nest_mirror else None,
                        time_budget=args.nest_time, max_evaluations=args.nest_evaluations,
                        seed=getattr(args, "seed", 1), workers=args.nest_workers,
-                       engine=args.nest_engine)
+                       engine=args.nest_engine, grades=grades)
     opts.validate()
     return opts
 
@@ -213,6 +222,14 @@ def report_text(d: Dict[str, Any]) -> str:
                      + (f" (gross {100 * m['utilisation_gross']:.2f} %)" if "utilisation_gross" in m else ""))
         for c in d["containers"]:
             lines.append(f"  {c['id']}: {c['parts']} parts, utilisation {100 * c['utilisation']:.2f} %")
+            on: Dict[int, List[str]] = {}
+            for g in m.get("grades", []):
+                if g["container"] == c["id"]:
+                    on.setdefault(g["material_grade"], []).append(
+                        f"{g['part']}#{g['copy']}" + (f" (grade {g['part_grade']})" if g["part_grade"] else ""))
+            for lv in sorted(on, reverse=True):
+                lines.append(f"    on grade {lv}: " + ", ".join(on[lv][:30])
+                             + (" ..." if len(on[lv]) > 30 else ""))
     if d["unplaced"]:
         lines.append("unplaced: " + ", ".join(f"{u['part']}#{u['copy']}" for u in d["unplaced"][:20]))
     for f in d["findings"]:

@@ -22,6 +22,7 @@ finding (that would be a bug; it never happens in the tests).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Callable, List, Optional, Sequence
 
 from ..errors import InputError
@@ -49,6 +50,11 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
     when ``progress`` returns False (Cancel discards)."""
     options.validate()
     active = [p for p in parts if not p.excluded]
+    if options.grades:
+        unknown = set(options.grades) - {p.id for p in active} - {p.name for p in active}
+        if unknown:
+            raise InputError(f"--grade names no part: {', '.join(sorted(unknown)[:5])}")
+        active = [replace(p, grade=options.part_grade(p.id, p.name, p.grade)) for p in active]
     ids = [p.id for p in active]
     if len(set(ids)) != len(ids):
         dup = sorted({i for i in ids if ids.count(i) > 1})

@@ -360,6 +360,31 @@ def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, orde
     return layout
 
 
+def material_grades(layout: Layout, placed: Sequence[Polygon], grade: Dict[str, int],
+                    tol: float) -> List[Dict[str, object]]:
+    """Per placement on a hide: the part's grade and the grade of the material
+    it lies on (the lowest grade under it: the best g whose usable region
+    holds the whole placed shape within ``tol`` x perimeter)."""
+    from .containers import usable_region
+    conts = {c.id: c for c in layout.containers}
+    regions: Dict[tuple, object] = {}
+    out: List[Dict[str, object]] = []
+    for pl, g in zip(layout.placements, placed):
+        c = conts[pl.container]
+        levels = sorted({c.base_grade} | {zg for zg, _ in c.zones}, reverse=True)
+        lies_on = min(levels)
+        for lv in levels:
+            key = (c.id, lv)
+            if key not in regions:
+                regions[key] = usable_region(c, lv)
+            if g.difference(regions[key]).area <= tol * g.exterior.length:
+                lies_on = lv
+                break
+        out.append({"part": pl.part_id, "copy": pl.copy, "container": pl.container,
+                    "part_grade": grade.get(pl.part_id, 0), "material_grade": lies_on})
+    return out
+
+
 def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) -> None:
     """(Re)compute the layout's figures from its placements: strip length and
     density (the strip outline is set to the used length), sheet and hide
@@ -369,12 +394,17 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
     area: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
     extent: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
     count: Dict[str, int] = {c.id: 0 for c in layout.containers}
+    grade = {p.id: p.grade for p in parts}
+    placed = []
     for pl in layout.placements:
         g = placed_polygon(polys[pl.part_id], pl.x, pl.y, pl.angle, pl.mirrored)
         area[pl.container] += g.area
         extent[pl.container] = max(extent[pl.container], g.bounds[2])
         count[pl.container] += 1
+        placed.append(g)
     metrics = layout.metrics
+    if spec.kind == "hide":
+        metrics["grades"] = material_grades(layout, placed, grade, options.tolerance)
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
         c = layout.containers[0]

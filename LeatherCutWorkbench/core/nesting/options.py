@@ -6,7 +6,7 @@ Units: mm for every length, degrees for every angle, seconds for times.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from ..errors import InputError
 from ..model import Container
@@ -85,9 +85,11 @@ class NestOptions:
       spacing offsets use it as arc tolerance.
     * ``tolerance`` -- the validity checker's length tolerance (mm): overlaps,
       protrusions and spacing shortfalls thinner than this are accepted.
+    * ``grades`` -- grade per part id or part name (a whole number or a letter
+      A-D, A best; see :mod:`core.dxfimport.grades`), replacing the part's own.
     * ``started_at`` -- ``time.monotonic()`` when the user asked for the nest
       (the CLI: before reading the drawing); the time budget counts from there.
-      None: from the call of :func:`nest`.
+      None: from the call of :func:`nest`.  Set as an attribute.
     """
 
     container: ContainerSpec = field(default_factory=ContainerSpec)
@@ -104,7 +106,16 @@ class NestOptions:
     engine: str = "own"
     chord_tol: float = 0.05
     tolerance: float = 1e-3
-    started_at: Optional[float] = None
+    grades: Dict[str, Any] = field(default_factory=dict)
+    started_at: Optional[float] = field(default=None, init=False)
+
+    def part_grade(self, part_id: str, name: str, own: int) -> int:
+        """The grade a part nests with: ``grades`` by id, then by name, else its own."""
+        from ..dxfimport.grades import parse_grade
+        for key in (part_id, name):
+            if key and key in self.grades:
+                return parse_grade(self.grades[key], f"grade of part {key}")
+        return own
 
     def part_rotations(self, own: Optional[List[float]]) -> Optional[List[float]]:
         """The allowed angles of a part under these options (None = any angle)."""
@@ -124,6 +135,8 @@ class NestOptions:
             raise InputError(f"unknown nesting engine {self.engine!r} (own or sparrow)")
         if self.workers is not None and self.workers < 1:
             raise InputError(f"workers must be >= 1, got {self.workers}")
+        for key in self.grades:
+            self.part_grade(key, "", 0)
         if self.chord_tol <= 0 or self.tolerance <= 0:
             raise InputError("chord tolerance and checker tolerance must be > 0 mm")
 
