@@ -34,7 +34,8 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                      help="nest on the hide(s) in this DXF: layers HIDE (outline), DEFECT, ZONE_<grade>")
     if primary:
         box.add_argument("--esicup", dest="nest_esicup", metavar="FILE.json",
-                         help="nest an ESICUP strip-packing instance (jagua-rs JSON) instead of a DXF")
+                         help="nest a benchmark instance instead of a DXF: ESICUP strip packing "
+                              "or jagua-rs bin packing with hides (bins, zones, min_quality)")
     g.add_argument("--sheets", dest="nest_sheets", type=int, metavar="N",
                    help="with --sheet: use at most N sheets and report what does not fit")
     g.add_argument("--spacing", dest="nest_spacing", type=non_negative, default=0.0, metavar="MM",
@@ -68,6 +69,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="write the nested drawing as DXF")
     g.add_argument(f"--{pre}svg-out", dest="nest_svg_out", metavar="FILE.svg",
                    help="write a picture of the layout as SVG")
+    g.add_argument("--remnant-out", dest="nest_remnant_out", metavar="HIDE.dxf",
+                   help="with hides: write the unused material (defects, zones kept) as a hide "
+                        "DXF for the next job's --hide")
 
 
 def options_from_args(args: argparse.Namespace):
@@ -134,7 +138,8 @@ def _parts_from_args(args, opts):
         if args.file:
             raise InputError("give either FILE or --esicup, not both")
         inst = read_esicup(args.nest_esicup)
-        opts.container = ContainerSpec.strip(inst.strip_height)
+        opts.container = ContainerSpec.hide(*inst.hides) if inst.hides else \
+            ContainerSpec.strip(inst.strip_height)
         return inst.parts, args.nest_esicup, []
     if not args.file:
         raise InputError("no drawing given: leathercut nest FILE.dxf --sheet WxH (or --esicup FILE.json)")
@@ -176,9 +181,26 @@ def run(args: argparse.Namespace) -> Report:
             except OSError as exc:
                 raise InputError(f"cannot write: {exc.strerror}", source=path) from None
             written[key] = path
+    if getattr(args, "nest_remnant_out", None):
+        if opts.container.kind != "hide":
+            raise InputError("--remnant-out needs hides (--hide or a bin-packing --esicup)")
+        rem = outputs.remnants(parts, layout, opts.spacing)
+        try:
+            outputs.write_hide_dxf(args.nest_remnant_out, rem)
+        except OSError as exc:
+            raise InputError(f"cannot write: {exc.strerror}", source=args.nest_remnant_out) from None
+        written["remnant"] = args.nest_remnant_out
+        layout.metrics["remnants"] = [{"id": h.id, "area_mm2": round(abs(_area(h.outline)), 3),
+                                       "defects": len(h.defects), "zones": len(h.zones)}
+                                      for h in rem]
     data = report_dict(source, opts, layout, findings)
     data["outputs"] = written
     return Report(data=data, text=report_text(data))
+
+
+def _area(ring) -> float:
+    from ..core.geometry import signed_area
+    return signed_area(list(ring))
 
 
 def report_dict(source: str, opts, layout, findings) -> Dict[str, Any]:

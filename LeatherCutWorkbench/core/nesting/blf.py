@@ -15,6 +15,7 @@ All coordinates are grid integers; a :class:`Bin` is one container instance
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
@@ -58,6 +59,7 @@ class Placer:
         self.nfps = nfps or NfpCache(variants, clock)
         self.clock = self.nfps.clock
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
+        self._ob_forms: Dict[int, list] = {}      # bin region -> obstacle edge forms
 
     # ---------------------------------------------------------------- regions
     def _spec(self, b: int) -> BinSpec:
@@ -67,18 +69,23 @@ class Placer:
         """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""
         spec = self._spec(b)
         if spec.kind == "hide":
-            from .nfp import region_ifp
+            from .nfp import obstacle_forms, region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
             key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
-                # out of time: the region of the convex hull (a subset, still valid)
+                # out of time: the region of the bounding box (a subset, still valid;
+                # a 4-vertex ring sweeps the hide outline several times faster)
                 exact = self.clock.exact()
                 key = key[:2] + (exact,)
                 hit = self._ifp_cache.get(key)
                 if hit is None:
                     outers, obstacles = spec.regions[rk]
-                    hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull)
+                    fk = key[0]
+                    if fk not in self._ob_forms:
+                        self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
+                    hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
+                                     self._ob_forms[fk])
                     self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
@@ -139,12 +146,14 @@ class Placer:
     def place(self, sequence: Sequence[Tuple[int, Optional[int]]],
               prefix: Optional["Trace"] = None, keep: int = 0,
               give_up: Optional[Tuple[float, Sequence[float]]] = None,
-              abortable: bool = True) -> Optional["Trace"]:
+              abortable: bool = True, variant_cap: Optional[int] = None) -> Optional["Trace"]:
         """Place ``sequence`` (type index, forced variant or None) in order.
 
         Returns None when the fill is abandoned: it left out more area than
         ``give_up`` = (limit, area per type) allows, or (``abortable``) the
-        clock's ``stop_at`` passed.
+        clock's ``stop_at`` passed.  ``variant_cap``: a copy without a forced
+        variant tries at most this many orientations of its part, evenly
+        spread (a quick first fill of freely turning parts).
 
         With ``prefix`` (the trace of an earlier call) and ``keep`` = k, the first
         k items are taken as placed there (the search changes only later items).
@@ -164,7 +173,13 @@ class Placer:
             if abortable and self.clock.expired():
                 return None
             t, forced = sequence[si]
+            if not abortable and time.monotonic() > self.clock.hard_stop:
+                placements.append((si, -1, -1, 0, 0))     # out of time: left unplaced
+                states.append(tuple(bs.copy() for bs in bins))
+                continue
             cands = [forced] if forced is not None else self.type_variants[t]
+            if forced is None and variant_cap is not None and len(cands) > variant_cap:
+                cands = [cands[(k * len(cands)) // variant_cap] for k in range(variant_cap)]
             done = False
             b = 0
             while True:
@@ -195,6 +210,13 @@ class Placer:
                         return None
             states.append(tuple(bs.copy() for bs in bins))
         return Trace(placements, states)
+
+
+def _box(ring: IntPath) -> IntPath:
+    """The bounding rectangle of a ring (CCW)."""
+    xs = [p[0] for p in ring]
+    ys = [p[1] for p in ring]
+    return [[min(xs), min(ys)], [max(xs), min(ys)], [max(xs), max(ys)], [min(xs), max(ys)]]
 
 
 #: Open strips are searched up to this x (grid units) -- far beyond any layout.

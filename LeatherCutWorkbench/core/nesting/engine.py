@@ -89,19 +89,20 @@ def _workers(options: NestOptions) -> int:
 _GRACE_S = 0.3
 
 
-def _deadlines(t_start: float, budget: float, n_copies: int) -> Tuple[float, float, float]:
-    """(search end, first-fill exact limit of worker 0, of the other workers).
+def _deadlines(t_start: float, budget: float, n_copies: int) -> Tuple[float, float, float, float]:
+    """(search end, first-fill exact limit of worker 0, of the other workers,
+    hard end of even the first fill: T + 5 % + 0.6 s, less the reserve).
 
     The search ends early enough for the final check and layout building
     (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
     within a second or two; the others fill exactly for up to 40 % of T."""
     if budget <= 0:
-        return math.inf, math.inf, math.inf
+        return math.inf, math.inf, math.inf, math.inf
     reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
-    return t_end, quick, t_start + 0.4 * budget
+    return t_end, quick, t_start + 0.4 * budget, t_start + 1.05 * budget + 0.6 - reserve
 
 
 class _Best:
@@ -168,7 +169,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     n_workers = _workers(options)
     budget = options.time_budget
-    t_end, quick, slow = _deadlines(t_start, budget, len(copies))
+    t_end, quick, slow, hard = _deadlines(t_start, budget, len(copies))
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 
@@ -190,17 +191,22 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             best.publish()
             return progress is None or progress(frac(), best.message()) is not False
 
-        b = Budget(t_end, quick, max_eval, stop, lambda c, o, p: best.offer(0, c, o, p), tick)
+        b = Budget(t_end, quick, max_eval, stop, lambda c, o, p: best.offer(0, c, o, p), tick,
+                   hard_stop=hard)
         evaluations = search(problem, copies, options.seed, 0, b)[3]
         workers_used = 1
     else:
-        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end, (quick, slow),
+        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end, (quick, slow, hard),
                                 max_eval, best, progress, frac, stop)
         workers_used = n_workers
     best.publish(force=True)
     cost, order, placements, _ = best.best
     report(progress, 0.97, "building the layout")
     layout = build(order, placements)
+    if layout.unplaced and budget > 0 and time.monotonic() > hard:
+        findings.append(Finding("warning", "time-budget-short",
+                                f"the time budget of {budget:g} s ended during the first fill: "
+                                "copies it did not reach are unplaced; give more time"))
     layout.findings.extend(findings)
     layout.metrics.update({"engine": "own", "workers": workers_used, "evaluations": evaluations,
                            "time_s": round(time.monotonic() - t_start, 3), "seed": options.seed,
@@ -251,7 +257,7 @@ def _closable_stdin() -> Iterator[None]:
 
 
 def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: float,
-              fill_limits: Tuple[float, float], max_eval: Optional[int], best: _Best,
+              fill_limits: Tuple[float, float, float], max_eval: Optional[int], best: _Best,
               progress: Optional[ProgressFn], frac, stop) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
@@ -264,7 +270,7 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: flo
         procs = [ctx.Process(target=worker_main, daemon=True,
                              args=(problem, copies, seed, i, t_end,
                                    fill_limits[0] if i == 0 else fill_limits[1],
-                                   max_eval, queue, stop_event))
+                                   max_eval, queue, stop_event, fill_limits[2]))
                  for i in range(n)]
         for p in procs:
             p.start()
@@ -438,7 +444,7 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
                         "utilisation": round(area[c.id] / na, 6) if na else 0.0,
                         "utilisation_gross": round(area[c.id] / ga, 6) if ga else 0.0,
                         "defects": len(c.defects), "zones": len(c.zones)})
-        metrics.update({"hides": len(layout.containers),
+        metrics.update({"hides": len(layout.containers), "hides_available": len(spec.hides),
                         "utilisation": round(total_used / total_net, 6) if total_net else 0.0,
                         "utilisation_gross": round(total_used / total_gross, 6) if total_gross else 0.0,
                         "item_area_mm2": round(total_used, 3)})

@@ -75,11 +75,19 @@ def _shift(path: IntPath, dx: int, dy: int) -> IntPath:
 
 
 def is_convex(ring: IntPath) -> bool:
-    """Does the CCW ring turn left (or go straight) at every vertex?"""
-    a = np.asarray(ring, dtype=np.float64)
-    d = np.roll(a, -1, axis=0) - a
-    cross = d[:, 0] * np.roll(d[:, 1], -1) - d[:, 1] * np.roll(d[:, 0], -1)
-    return bool((cross >= 0).all())
+    """Does the CCW ring turn left (or go straight) at every vertex?  (Exact
+    integers; a plain loop beats numpy on the few vertices rings have here.)"""
+    n = len(ring)
+    for i in range(n):
+        (ax, ay), (bx, by), (cx, cy) = ring[i - 2], ring[i - 1], ring[i]
+        if (bx - ax) * (cy - by) - (by - ay) * (cx - bx) < 0:
+            return False
+    return True
+
+
+def obstacle_forms(ring: IntPath) -> Forms:
+    """Edge forms of an obstacle ring for :func:`region_ifp` (one form when convex)."""
+    return [edge_form(ring)] if is_convex(ring) else piece_forms(ring)
 
 
 Forms = Optional[List[Form]]
@@ -164,18 +172,22 @@ def pair_nfp(a: Variant, b: Variant, a_forms: Forms = None,
     return difference(solid, islands) if islands else solid
 
 
-def region_ifp(outers: Sequence[IntPath], obstacles: Sequence[IntPath], b_outer: IntPath) -> List[IntPath]:
+def region_ifp(outers: Sequence[IntPath], obstacles: Sequence[IntPath], b_outer: IntPath,
+               ob_forms: "Sequence[Forms] | None" = None) -> List[IntPath]:
     """Inner-fit region of the ring ``b_outer`` in a container made of simple CCW
     ``outers`` with ``obstacles`` (CCW rings: defects, forbidden zones) it must
-    not overlap."""
+    not overlap; ``ob_forms``: the obstacles' :func:`obstacle_forms` (the
+    same for every part, so the caller keeps them)."""
     fits: List[IntPath] = []
     for o in outers:
         fits.extend(inner_fit(o, b_outer))
     if not fits:
         return []
     blocked: List[IntPath] = []
-    for ob in obstacles:
-        blocked.extend(solid_nfp(ob, b_outer))
+    nb_forms = piece_forms(b_outer, negate=True)      # once for every obstacle
+    forms = ob_forms if ob_forms is not None else [obstacle_forms(ob) for ob in obstacles]
+    for ob, fa in zip(obstacles, forms):
+        blocked.extend(solid_nfp(ob, b_outer, fa, nb_forms))
     return difference(fits, blocked) if blocked else fits
 
 
@@ -187,11 +199,15 @@ class Clock:
       fill of a search is never abandoned, see ``exact_until``);
     * ``exact_until`` -- exact NFPs / inner-fit regions not yet cached are
       computed only before this; later the convex-hull ones are used (valid,
-      coarser, fast), so even a fill of hundreds of arc-rich parts ends soon."""
+      coarser, fast), so even a fill of hundreds of arc-rich parts ends soon;
+    * ``hard_stop`` -- on a hopelessly loaded machine even the first fill
+      stops here; the copies it did not reach are reported unplaced."""
 
     stop_at: float = math.inf
     exact_until: float = math.inf
     stop: "Callable[[], bool] | None" = None      # the user pressed Stop
+    #: even the first fill ends here: the copies not placed yet stay unplaced
+    hard_stop: float = math.inf
 
     def exact(self) -> bool:
         """May an exact NFP still be computed?  (Not once past a deadline.)"""
@@ -216,19 +232,25 @@ class NfpCache:
         self.clock = clock or Clock()
         self._cache: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
         self._coarse: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
-        self._forms: Dict[int, Tuple[Form, Form, Forms, Forms]] = {}
+        self._hull_forms: Dict[int, Tuple[Form, Form]] = {}
+        self._piece_forms: Dict[int, Tuple[Forms, Forms]] = {}
 
-    def forms(self, v: int) -> Tuple[Form, Form, Forms, Forms]:
-        """Edge forms of variant ``v``: hull, -hull, convex pieces, -pieces (cached)."""
-        hit = self._forms.get(v)
+    def hull_forms(self, v: int) -> Tuple[Form, Form]:
+        """Edge forms of variant ``v``'s convex hull and of its negation (cached)."""
+        hit = self._hull_forms.get(v)
         if hit is None:
-            var = self.variants[v]
-            pieces = convex_pieces(var.outer)
-            hit = (edge_form(var.hull), edge_form(_neg(var.hull)),
-                   None if pieces is None else [edge_form(p) for p in pieces],
-                   None if pieces is None else [edge_form(_neg(p)) for p in pieces])
-            self._forms[v] = hit
+            hull = self.variants[v].hull
+            hit = self._hull_forms[v] = (edge_form(hull), edge_form(_neg(hull)))
         return hit
+
+    def piece_forms(self, v: int) -> Tuple[Forms, Forms]:
+        """Edge forms of variant ``v``'s convex pieces and of their negations
+        (cached; None: the outline could not be decomposed)."""
+        if v not in self._piece_forms:
+            pieces = convex_pieces(self.variants[v].outer)
+            self._piece_forms[v] = (None, None) if pieces is None else (
+                [edge_form(p) for p in pieces], [edge_form(_neg(p)) for p in pieces])
+        return self._piece_forms[v]
 
     def get(self, a: int, b: int) -> Tuple[List[np.ndarray], Tuple[int, int, int, int]]:
         key = (a, b)
@@ -237,12 +259,12 @@ class NfpCache:
             return hit
         if self.clock.exact():
             hit = _arrays(pair_nfp(self.variants[a], self.variants[b],
-                                   self.forms(a)[2], self.forms(b)[3]))
+                                   self.piece_forms(a)[0], self.piece_forms(b)[1]))
             self._cache[key] = hit
             return hit
         hit = self._coarse.get(key)
         if hit is None:
-            hit = _arrays([sum_forms(self.forms(a)[0], self.forms(b)[1])])
+            hit = _arrays([sum_forms(self.hull_forms(a)[0], self.hull_forms(b)[1])])
             self._coarse[key] = hit
         return hit
 

@@ -5,6 +5,7 @@ Units: mm for every length, degrees for every angle, seconds for times.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -143,8 +144,10 @@ class NestOptions:
 
 def parse_rotations(text: str) -> Tuple[Optional[List[float]], Optional[float]]:
     """Parse a ``--rotations`` value: ``any`` -> (None, None); ``0,180`` ->
-    ([0, 180], None); ``step:90`` -> ([0, 90, 180, 270], 90)."""
-    t = text.strip().lower()
+    ([0, 180], None); ``step:90`` -> ([0, 90, 180, 270], 90); a grain
+    direction with a tolerance, ``0+-5`` (or ``0±5``; several: ``0+-5,180+-5``)
+    -> the angles from -5 to 5 degrees in equal steps of at most 2.5."""
+    t = text.strip().lower().replace("±", "+-")
     if t == "any":
         return None, None
     try:
@@ -154,9 +157,21 @@ def parse_rotations(text: str) -> Tuple[Optional[List[float]], Optional[float]]:
                 raise ValueError
             n = max(1, int(round(360.0 / step)))
             return [round(i * step, 9) % 360.0 for i in range(n) if i * step < 360.0 - 1e-9], step
-        vals = [float(v) % 360.0 for v in t.split(",") if v.strip()]
+        vals: List[float] = []
+        for v in (v.strip() for v in t.split(",")):
+            if not v:
+                continue
+            if "+-" in v:
+                base, tol = (float(x) for x in v.split("+-"))
+                if not 0 <= tol < 180:
+                    raise ValueError
+                n = int(math.ceil(tol / 2.5)) if tol > 0 else 0
+                vals += [round((base + tol * k / max(n, 1)) % 360.0, 9) for k in range(-n, n + 1)]
+            else:
+                vals.append(float(v) % 360.0)
         if not vals:
             raise ValueError
         return sorted(set(vals)), None
     except ValueError:
-        raise InputError(f"bad --rotations value {text!r}: use any, a list like 0,180 or step:90") from None
+        raise InputError(f"bad --rotations value {text!r}: use any, a list like 0,180, step:90 "
+                         "or a grain tolerance like 0+-5") from None

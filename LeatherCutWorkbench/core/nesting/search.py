@@ -144,7 +144,8 @@ class Budget:
     * ``max_evaluations`` -- stop after this many layouts (None: no limit);
     * ``stop`` -- returns True when the user pressed Stop (keep the best);
     * ``on_best(cost, order, placements)`` -- called on every new best layout;
-    * ``tick(best_cost)`` -- called every few evaluations; False = cancel."""
+    * ``tick(best_cost)`` -- called every few evaluations; False = cancel;
+    * ``hard_stop`` -- even the first fill ends then (copies left unplaced)."""
 
     t_end: float
     first_fill_until: float = math.inf
@@ -152,6 +153,7 @@ class Budget:
     stop: Optional[Callable[[], bool]] = None
     on_best: Optional[Callable[[Cost, List[Gene], Placements], None]] = None
     tick: Optional[Callable[[Cost], bool]] = None
+    hard_stop: float = math.inf
 
     def done(self, evals: int) -> bool:
         if self.max_evaluations is not None and evals >= self.max_evaluations:
@@ -179,9 +181,11 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     starts = starts[k:] + starts[:k]
     t0 = time.monotonic()
     placer.clock.stop_at = budget.t_end
+    placer.clock.hard_stop = budget.hard_stop
     placer.clock.stop = budget.stop
     placer.clock.exact_until = budget.first_fill_until
-    tr = placer.place(starts[0], abortable=False)
+    # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
+    tr = placer.place(starts[0], abortable=False, variant_cap=4 if worker == 0 else None)
     placer.clock.exact_until = math.inf
     best = (cost_of(problem, starts[0], tr.placements), starts[0], tr)
     budget.improved(best[0], best[1], tr.placements)
@@ -326,13 +330,15 @@ def search(problem: Problem, copies: List[int], seed: int, worker: int, budget: 
 
 
 def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_end: float,
-                first_fill_until: float, max_evaluations: Optional[int], queue, stop_event) -> None:
+                first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
+                hard_stop: float = math.inf) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
     ("best", worker, cost, order, placements); the end as ("done", worker,
     evaluations) or ("error", worker, message).  ``stop_event`` set = stop now."""
     def on_best(cost, order, placements):
         queue.put(("best", worker, cost, order, placements))
-    budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best)
+    budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best,
+                    hard_stop=hard_stop)
     try:
         _, _, _, evals = search(problem, copies, seed, worker, budget)
         queue.put(("done", worker, evals))

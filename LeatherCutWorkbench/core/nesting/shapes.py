@@ -167,6 +167,9 @@ def offset_paths(paths: List[IntPath], delta: float, arc_tol: float) -> List[Int
 def _same_shape(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
     """Are two rings the same shape up to translation (within ``tol`` mm)?"""
     from shapely.geometry import Polygon
+    da, db = a.max(axis=0) - a.min(axis=0), b.max(axis=0) - b.min(axis=0)
+    if np.abs(da - db).max() > 4.0 * tol + 1e-9 * float(da.max()):
+        return False                  # different bounding boxes: cheaply not the same
     pa = Polygon(a - a.min(axis=0))
     pb = Polygon(b - b.min(axis=0))
     if abs(pa.area - pb.area) > tol * pa.length + 1e-9 * pa.area:
