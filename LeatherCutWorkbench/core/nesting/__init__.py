@@ -9,11 +9,13 @@ Public entry points::
 Modules: :mod:`options` (NestOptions, ContainerSpec), :mod:`shapes` (parts as
 polygons, orientation variants, spacing), :mod:`containers` (sheet / strip /
 hide, hide DXF layer convention), :mod:`nfp` (no-fit / inner-fit polygons),
+:mod:`convex` (convex pieces and sums for fast no-fit polygons),
 :mod:`blf` (bottom-left fill), :mod:`search` (anytime local search over
-order and orientations, one process per core), :mod:`checker` (independent
-validity check), :mod:`esicup` (benchmark instance reader),
+order and orientations, one process per core; time budget in :class:`search.Budget`),
+:mod:`checker` (independent validity check), :mod:`esicup` (benchmark
+instance reader: strips, and hides with quality zones),
 :mod:`sparrow_engine` (spyrrow in a subprocess), :mod:`outputs` (layout
-JSON, DXF, SVG).
+JSON, DXF, SVG, remnant hides).
 
 Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
 a placement the checker rejects is moved to ``unplaced`` with an error
