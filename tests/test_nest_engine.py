@@ -41,7 +41,8 @@ def test_sheets_open_as_needed_and_fixed_count_reports_unplaced():
     assert max(per["sheet1"]["parts"], per["sheet2"]["parts"]) == 4     # 4 is all a sheet holds
     assert lay.metrics["utilisation"] == pytest.approx(7 * 2400 / (2 * 130 * 90), abs=1e-6)
 
-    opts1 = NestOptions(container=ContainerSpec.sheet(130, 90, count=1), time_budget=0.3, workers=1)
+    opts1 = NestOptions(container=ContainerSpec.sheet(130, 90, count=1), time_budget=5,
+                        max_evaluations=300, workers=1)
     lay1 = nest(parts, opts1)
     assert len(lay1.placements) == 4 and len(lay1.unplaced) == 3
     assert any(f.code == "unplaced-parts" for f in lay1.findings)

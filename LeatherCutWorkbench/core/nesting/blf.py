@@ -15,6 +15,7 @@ All coordinates are grid integers; a :class:`Bin` is one container instance
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -35,12 +36,15 @@ class BinSpec:
     ``rect`` (x0, y0, x1, y1) is the usable rectangle of a sheet or strip (after
     the margin; a strip's x1 is ignored: it is open).  A hide has ``regions``:
     per grade, the (outers, obstacles) rings of the material that grade may use
-    (after margins), turned into inner-fit regions per variant on demand."""
+    (after margins), turned into inner-fit regions per variant on demand, and
+    ``material``: the area of the largest region (a copy larger than what is
+    left of it cannot fit, so no inner-fit region is computed for it)."""
 
     kind: str
     rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
     regions: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
+    material: float = math.inf    # hide: usable area (grid units^2) of its largest region
 
 
 class Placer:
@@ -49,7 +53,7 @@ class Placer:
     def __init__(self, variants: Sequence[Variant], type_variants: Sequence[Sequence[int]],
                  type_grade: Sequence[int], bins: Sequence[BinSpec], open_new: bool,
                  max_bins: Optional[int], nfps: Optional[NfpCache] = None,
-                 clock: Optional[Clock] = None):
+                 clock: Optional[Clock] = None, type_area: Optional[Sequence[float]] = None):
         self.variants = variants
         self.type_variants = type_variants
         self.type_grade = type_grade
@@ -58,6 +62,7 @@ class Placer:
         self.max_bins = max_bins
         self.nfps = nfps or NfpCache(variants, clock)
         self.clock = self.nfps.clock
+        self.type_area = type_area       # true part areas, grid units^2 (for the hide prune)
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[int, list] = {}      # bin region -> obstacle edge forms
 
@@ -96,6 +101,15 @@ class Placer:
         if lx > hx or ly > hy:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
+
+    def _may_fit(self, b: int, state: "BinState", t: int) -> bool:
+        """False when a copy of type ``t`` is larger than the material left on
+        hide ``b`` (exact: placed copies lie in the material, disjointly)."""
+        spec = self._spec(b)
+        if spec.kind != "hide" or self.type_area is None or spec.material == math.inf:
+            return True
+        used = sum(self.type_area[self.variants[u].type_index] for (u, _x, _y) in state.placed)
+        return self.type_area[t] <= spec.material - used
 
     def _can_open(self, n: int) -> bool:
         """May an (n+1)-th bin be opened?"""
@@ -188,7 +202,7 @@ class Placer:
                         break
                     bins.append(self._new_bin(b))
                 best = None
-                for vi in cands:
+                for vi in (cands if self._may_fit(b, bins[b], t) else ()):
                     r = self.best_position(b, bins[b], vi)
                     if r is not None and (best is None or r < best[0]):
                         best = (r, vi)

@@ -66,11 +66,15 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
     bins = []
     for c in spec.hides:
         regions: Dict[int, Tuple[list, list]] = {}
+        material = 0.0
         for g in sorted(set(grades)):
-            outers, holes, _ = shrink_for_margin(c, g, m)
+            outers, holes, region = shrink_for_margin(c, g, m)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
                           [to_grid(_arr(r), scale) for r in holes])
-        bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades}))
+            if region is not None:
+                material = max(material, region.area * scale * scale)
+        bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades},
+                            material=material))
     return bins, list(spec.hides), False, len(spec.hides)
 
 
@@ -163,7 +167,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     grades = [t.grade for t in types]
     bins, hides, open_new, max_bins = _bins(options, scale, half_gap, grades)
     problem = Problem(variants, type_variants, grades, [t.area for t in types], bins,
-                      open_new, max_bins)
+                      open_new, max_bins, scale)
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
     report(progress, 0.02, f"nesting {len(copies)} copies of {len(types)} parts")
 

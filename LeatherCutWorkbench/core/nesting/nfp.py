@@ -96,6 +96,8 @@ Forms = Optional[List[Form]]
 def piece_forms(ring: IntPath, negate: bool = False) -> Forms:
     """Edge forms of the convex pieces of ``ring`` (of ``-ring`` with
     ``negate``), or None when it cannot be decomposed."""
+    if is_convex(ring):
+        return [edge_form(_neg(ring) if negate else ring)]
     pieces = convex_pieces(ring)
     if pieces is None:
         return None
@@ -124,6 +126,8 @@ def solid_nfp(a_outer: IntPath, b_outer: IntPath, a_forms: Forms = None,
     union of the pieces' convex sums.  When a ring cannot be decomposed
     pyclipper's edge sweep is used."""
     nb = _neg(b_outer)
+    if a_forms is not None and nb_forms is not None and len(a_forms) == 1 == len(nb_forms):
+        return [sum_forms(a_forms[0], nb_forms[0])]      # both convex: one convex sum
     if is_convex(a_outer) and is_convex(b_outer):
         return [convex_sum(a_outer, nb)]       # fast path: one convex sum
     pa = a_forms if a_forms is not None else piece_forms(a_outer)

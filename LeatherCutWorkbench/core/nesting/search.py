@@ -62,9 +62,13 @@ class Problem:
     open_new: bool
     max_bins: Optional[int]
 
+    #: grid units per mm (the hide prune compares areas in grid units)
+    scale: float = 1.0
+
     def placer(self) -> Placer:
         return Placer(self.variants, self.type_variants, self.type_grade, self.bins,
-                      self.open_new, self.max_bins)
+                      self.open_new, self.max_bins,
+                      type_area=[a * self.scale * self.scale for a in self.type_area])
 
 
 def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements) -> Tuple[float, int, int]:
