@@ -1,7 +1,6 @@
 """Grades reach the parts: from a DXF grade text or layer, from ``--grade``,
 and the hide report says on which material grade every copy lies."""
 
-import json
 
 import ezdxf
 import pytest
@@ -9,6 +8,8 @@ import pytest
 from LeatherCutWorkbench.cli import main
 from LeatherCutWorkbench.core.dxfimport.grades import grade_of_layer, grade_of_text, parse_grade
 from LeatherCutWorkbench.core.errors import InputError
+
+from test_nest_cli import run_json
 
 
 def test_grade_texts_layers_and_letters():
@@ -47,18 +48,11 @@ def _hide_dxf(path):
     doc.saveas(path)
 
 
-def _run(capsys, *argv):
-    code = main(["nest", *argv, "--json"])
-    out = capsys.readouterr()
-    assert code == 0, out.err
-    return json.loads(out.out)
-
-
 def test_dxf_grades_and_cli_override_decide_where_parts_lie(capsys, tmp_path):
     src, hide = str(tmp_path / "parts.dxf"), str(tmp_path / "hide.dxf")
     _parts_dxf(src)
     _hide_dxf(hide)
-    d = _run(capsys, src, "--hide", hide, "--time", "1", "--workers", "1")
+    d = run_json(capsys, src, "--hide", hide, "--time", "3", "--workers", "1")
     found = {f["message"] for f in d["findings"] if f["code"] == "part-grade"}
     assert found == {"part P1: grade 4 from its text", "part P2: grade 2 from its layer"}
     grades = {g["part"]: g for g in d["metrics"]["grades"]}
@@ -67,7 +61,7 @@ def test_dxf_grades_and_cli_override_decide_where_parts_lie(capsys, tmp_path):
     assert grades["P3"]["part_grade"] == 0
 
     # --grade replaces the drawing's grade: now P3 needs grade A too, P1 nothing
-    d = _run(capsys, src, "--hide", hide, "--time", "1", "--workers", "1",
+    d = run_json(capsys, src, "--hide", hide, "--time", "3", "--workers", "1",
              "--grade", "P3=A", "--grade", "P1=0")
     grades = {g["part"]: g for g in d["metrics"]["grades"]}
     assert grades["P3"]["part_grade"] == 4 and grades["P3"]["material_grade"] == 4
