@@ -38,13 +38,16 @@ class BinSpec:
     per grade, the (outers, obstacles) rings of the material that grade may use
     (after margins), turned into inner-fit regions per variant on demand, and
     ``material``: the area of the largest region (a copy larger than what is
-    left of it cannot fit, so no inner-fit region is computed for it)."""
+    left of it cannot fit, so no inner-fit region is computed for it);
+    ``coarse``: per grade a subset of the region with few vertices and convex
+    obstacles, used under time pressure."""
 
     kind: str
     rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
     regions: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
     material: float = math.inf    # hide: usable area (grid units^2) of its largest region
+    coarse: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
 
 
 class Placer:
@@ -64,7 +67,7 @@ class Placer:
         self.clock = self.nfps.clock
         self.type_area = type_area       # true part areas, grid units^2 (for the hide prune)
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
-        self._ob_forms: Dict[int, list] = {}      # bin region -> obstacle edge forms
+        self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
 
     # ---------------------------------------------------------------- regions
     def _spec(self, b: int) -> BinSpec:
@@ -85,8 +88,9 @@ class Placer:
                 key = key[:2] + (exact,)
                 hit = self._ifp_cache.get(key)
                 if hit is None:
-                    outers, obstacles = spec.regions[rk]
-                    fk = key[0]
+                    outers, obstacles = spec.regions[rk] if exact or rk not in spec.coarse \
+                        else spec.coarse[rk]
+                    fk = (key[0], exact or rk not in spec.coarse)
                     if fk not in self._ob_forms:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
                     hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),

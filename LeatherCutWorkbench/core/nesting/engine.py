@@ -17,6 +17,7 @@ import time
 from contextlib import contextmanager
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
+import pyclipper
 from shapely.geometry import Polygon
 
 from ..errors import CancelledError, LeatherCutError
@@ -66,16 +67,40 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
     bins = []
     for c in spec.hides:
         regions: Dict[int, Tuple[list, list]] = {}
+        coarse: Dict[int, Tuple[list, list]] = {}
         material = 0.0
+        xs = [p[0] for p in c.outline]
+        ys = [p[1] for p in c.outline]
+        tol = 0.004 * max(max(xs) - min(xs), max(ys) - min(ys))
         for g in sorted(set(grades)):
             outers, holes, region = shrink_for_margin(c, g, m)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
                           [to_grid(_arr(r), scale) for r in holes])
             if region is not None:
                 material = max(material, region.area * scale * scale)
+                coarse[g] = _coarse_region(region, tol, scale)
         bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades},
-                            material=material))
+                            material=material, coarse=coarse))
     return bins, list(spec.hides), False, len(spec.hides)
+
+
+def _coarse_region(region, tol: float, scale: float) -> Tuple[list, list]:
+    """A subset of a hide region with few vertices, for inner-fit regions under
+    time pressure: shrunk by ``tol`` mm then simplified within 0.9 ``tol``
+    (so it stays inside), holes as their convex hulls (which contain them)."""
+    from .containers import polygons_of
+    from .shapes import convex_hull
+    small = region.buffer(-tol, 4, join_style=2).simplify(0.9 * tol)
+    outers, obstacles = [], []
+    for p in polygons_of(small):
+        ring = to_grid(_arr(p.exterior.coords[:-1]), scale)
+        if len(ring) >= 3:
+            outers.append(ring if pyclipper.Orientation(ring) else ring[::-1])
+        for r in p.interiors:
+            hole = convex_hull(to_grid(_arr(r.coords[:-1]), scale))
+            if len(hole) >= 3:
+                obstacles.append(hole)
+    return outers, obstacles
 
 
 def _arr(ring):
