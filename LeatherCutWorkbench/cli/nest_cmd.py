@@ -197,11 +197,16 @@ def run(args: argparse.Namespace) -> Report:
 
 
 def _process_start() -> float:
-    """``time.monotonic()`` when this process started (Linux: /proc/self/stat,
-    whose start time counts clock ticks since boot like CLOCK_MONOTONIC), so
-    ``--time`` covers Python's start-up too; now when unknown or implausible."""
+    """``time.monotonic()`` when this ``leathercut`` process started (Linux:
+    /proc/self/stat, whose start time counts clock ticks since boot like
+    CLOCK_MONOTONIC), so ``--time`` covers Python's start-up too.  Now when
+    the CLI runs inside another program (tests, scripts) or the start is
+    unknown or implausible."""
+    import sys
     import time
     now = time.monotonic()
+    if not os.path.basename(sys.argv[0] if sys.argv else "").startswith("leathercut"):
+        return now
     try:
         with open("/proc/self/stat", encoding="ascii") as fh:
             ticks = float(fh.read().rsplit(")", 1)[1].split()[19])
