@@ -66,9 +66,11 @@ def test_evaluations_are_abandoned_at_the_deadline_and_the_first_fill_hard_stop(
     seq = [(0, None)] * 3
     assert placer.place(seq) is None                     # abandoned: out of time
     clock.hard_stop = time.monotonic() - 1.0
-    tr = placer.place(seq, abortable=False)              # the first fill still answers
-    assert tr is not None and tr.unplaced == [0, 1, 2]
-    clock.hard_stop = math.inf
+    tr = placer.place(seq, abortable=False)              # the first fill goes on, boxes only
+    assert tr is not None and tr.unplaced == []
+    clock.give_up_at = time.monotonic() - 1.0
+    assert placer.place(seq, abortable=False).unplaced == [0, 1, 2]     # last resort
+    clock.hard_stop = clock.give_up_at = math.inf
     assert placer.place(seq, abortable=False).unplaced == []
 
 

@@ -191,7 +191,7 @@ class Placer:
             if abortable and self.clock.expired():
                 return None
             t, forced = sequence[si]
-            if not abortable and time.monotonic() > self.clock.hard_stop:
+            if not abortable and time.monotonic() > self.clock.give_up_at:
                 placements.append((si, -1, -1, 0, 0))     # out of time: left unplaced
                 states.append(tuple(bs.copy() for bs in bins))
                 continue

@@ -118,20 +118,23 @@ def _workers(options: NestOptions) -> int:
 _GRACE_S = 0.3
 
 
-def _deadlines(t_start: float, budget: float, n_copies: int) -> Tuple[float, float, float, float]:
+def _deadlines(t_start: float, budget: float, n_copies: int
+               ) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
-    hard end of even the first fill: T + 5 % + 0.6 s, less the reserve).
+    bounding boxes only in the first fill from the search end, and the first
+    fill's last resort end at 1.5 T + 2 s: only a machine too loaded even for
+    box-only no-fit polygons ever leaves copies unplaced for lack of time).
 
     The search ends early enough for the final check and layout building
     (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
     within a second or two; the others fill exactly for up to 40 % of T."""
     if budget <= 0:
-        return math.inf, math.inf, math.inf, math.inf
+        return math.inf, math.inf, math.inf, math.inf, math.inf
     reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
-    return t_end, quick, t_start + 0.4 * budget, t_start + 1.05 * budget + 0.6 - reserve
+    return t_end, quick, t_start + 0.4 * budget, t_end, t_start + 1.5 * budget + 2.0
 
 
 class _Best:
@@ -140,6 +143,7 @@ class _Best:
 
     def __init__(self, summary, on_best, build):
         self.per_worker: Dict[int, tuple] = {}
+        self.evals: Dict[int, int] = {}      # evaluations reported so far per worker
         self.best: Optional[tuple] = None
         self.summary = summary
         self.on_best = on_best
@@ -198,7 +202,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     n_workers = _workers(options)
     budget = options.time_budget
-    t_end, quick, slow, hard = _deadlines(t_start, budget, len(copies))
+    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies))
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 
@@ -221,12 +225,12 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             return progress is None or progress(frac(), best.message()) is not False
 
         b = Budget(t_end, quick, max_eval, stop, lambda c, o, p: best.offer(0, c, o, p), tick,
-                   hard_stop=hard)
+                   hard_stop=boxes, give_up_at=hard)
         evaluations = search(problem, copies, options.seed, 0, b)[3]
         workers_used = 1
     else:
-        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end, (quick, slow, hard),
-                                max_eval, best, progress, frac, stop)
+        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end,
+                                (quick, slow, boxes, hard), max_eval, best, progress, frac, stop)
         workers_used = n_workers
     best.publish(force=True)
     cost, order, placements, _ = best.best
@@ -286,7 +290,7 @@ def _closable_stdin() -> Iterator[None]:
 
 
 def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: float,
-              fill_limits: Tuple[float, float, float], max_eval: Optional[int], best: _Best,
+              fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
               progress: Optional[ProgressFn], frac, stop) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
@@ -299,7 +303,7 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: flo
         procs = [ctx.Process(target=worker_main, daemon=True,
                              args=(problem, copies, seed, i, t_end,
                                    fill_limits[0] if i == 0 else fill_limits[1],
-                                   max_eval, queue, stop_event, fill_limits[2]))
+                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3]))
                  for i in range(n)]
         for p in procs:
             p.start()
@@ -333,7 +337,7 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: flo
             queue.close()
     if best.best is None:
         raise LeatherCutError("nesting workers failed: " + ("; ".join(errors) or "no layout"))
-    return sum(done.values())
+    return sum(max(done.get(i, 0), best.evals.get(i, 0)) for i in range(n))
 
 
 def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout: float) -> None:
@@ -350,6 +354,8 @@ def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout:
             best.offer(msg[1], msg[2], msg[3], msg[4])
         elif msg[0] == "done":
             done[msg[1]] = msg[2]
+        elif msg[0] == "evals":
+            best.evals[msg[1]] = msg[2]
         else:
             errors.append(msg[2])
 

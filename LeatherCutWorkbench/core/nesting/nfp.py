@@ -204,14 +204,21 @@ class Clock:
     * ``exact_until`` -- exact NFPs / inner-fit regions not yet cached are
       computed only before this; later the convex-hull ones are used (valid,
       coarser, fast), so even a fill of hundreds of arc-rich parts ends soon;
-    * ``hard_stop`` -- on a hopelessly loaded machine even the first fill
-      stops here; the copies it did not reach are reported unplaced."""
+    * ``hard_stop`` -- on a hopelessly loaded machine the first fill goes on
+      with bounding-box no-fit polygons from here;
+    * ``give_up_at`` -- and stops here: the copies it did not reach are
+      reported unplaced."""
 
     stop_at: float = math.inf
     exact_until: float = math.inf
     stop: "Callable[[], bool] | None" = None      # the user pressed Stop
-    #: even the first fill ends here: the copies not placed yet stay unplaced
+    #: from here on even the first fill uses bounding boxes only (fastest, coarsest)
     hard_stop: float = math.inf
+    #: the first fill ends here: the copies not placed yet stay unplaced
+    give_up_at: float = math.inf
+
+    def boxes(self) -> bool:
+        return self.hard_stop != math.inf and time.monotonic() > self.hard_stop
 
     def exact(self) -> bool:
         """May an exact NFP still be computed?  (Not once past a deadline.)"""
@@ -267,6 +274,10 @@ class NfpCache:
             self._cache[key] = hit
             return hit
         hit = self._coarse.get(key)
+        if hit is None and self.clock.boxes():
+            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = self.variants[a].bbox, self.variants[b].bbox
+            return _arrays([[[ax0 - bx1, ay0 - by1], [ax1 - bx0, ay0 - by1],
+                             [ax1 - bx0, ay1 - by0], [ax0 - bx1, ay1 - by0]]])
         if hit is None:
             hit = _arrays([sum_forms(self.hull_forms(a)[0], self.hull_forms(b)[1])])
             self._coarse[key] = hit

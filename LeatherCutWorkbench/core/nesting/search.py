@@ -149,7 +149,8 @@ class Budget:
     * ``stop`` -- returns True when the user pressed Stop (keep the best);
     * ``on_best(cost, order, placements)`` -- called on every new best layout;
     * ``tick(best_cost)`` -- called every few evaluations; False = cancel;
-    * ``hard_stop`` -- even the first fill ends then (copies left unplaced)."""
+    * ``hard_stop`` -- the first fill goes on with bounding boxes only;
+    * ``give_up_at`` -- even the first fill ends then (copies left unplaced)."""
 
     t_end: float
     first_fill_until: float = math.inf
@@ -158,6 +159,7 @@ class Budget:
     on_best: Optional[Callable[[Cost, List[Gene], Placements], None]] = None
     tick: Optional[Callable[[Cost], bool]] = None
     hard_stop: float = math.inf
+    give_up_at: float = math.inf
 
     def done(self, evals: int) -> bool:
         if self.max_evaluations is not None and evals >= self.max_evaluations:
@@ -186,6 +188,7 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     t0 = time.monotonic()
     placer.clock.stop_at = budget.t_end
     placer.clock.hard_stop = budget.hard_stop
+    placer.clock.give_up_at = budget.give_up_at
     placer.clock.stop = budget.stop
     placer.clock.exact_until = budget.first_fill_until
     # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
@@ -335,14 +338,23 @@ def search(problem: Problem, copies: List[int], seed: int, worker: int, budget: 
 
 def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_end: float,
                 first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
-                hard_stop: float = math.inf) -> None:
+                hard_stop: float = math.inf, give_up_at: float = math.inf) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
-    ("best", worker, cost, order, placements); the end as ("done", worker,
-    evaluations) or ("error", worker, message).  ``stop_event`` set = stop now."""
+    ("best", worker, cost, order, placements), every 100 evaluations
+    ("evals", worker, count); the end as ("done", worker, evaluations) or
+    ("error", worker, message).  ``stop_event`` set = stop now."""
     def on_best(cost, order, placements):
         queue.put(("best", worker, cost, order, placements))
-    budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best,
-                    hard_stop=hard_stop)
+
+    ticks = [0]
+
+    def tick(_cost) -> bool:              # called every 10 evaluations
+        ticks[0] += 10
+        if ticks[0] % 100 == 0:
+            queue.put(("evals", worker, ticks[0]))
+        return True
+    budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
+                    hard_stop=hard_stop, give_up_at=give_up_at)
     try:
         _, _, _, evals = search(problem, copies, seed, worker, budget)
         queue.put(("done", worker, evals))
