@@ -66,6 +66,8 @@ class Placer:
         self.nfps = nfps or NfpCache(variants, clock)
         self.clock = self.nfps.clock
         self.type_area = type_area       # true part areas, grid units^2 (for the hide prune)
+        #: default ``variant_cap`` of :meth:`place` (None: every orientation)
+        self.variant_cap: Optional[int] = None
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
 
@@ -196,8 +198,9 @@ class Placer:
                 states.append(tuple(bs.copy() for bs in bins))
                 continue
             cands = [forced] if forced is not None else self.type_variants[t]
-            if forced is None and variant_cap is not None and len(cands) > variant_cap:
-                cands = [cands[(k * len(cands)) // variant_cap] for k in range(variant_cap)]
+            cap = variant_cap if variant_cap is not None else self.variant_cap
+            if forced is None and cap is not None and len(cands) > cap:
+                cands = [cands[(k * len(cands)) // cap] for k in range(cap)]
             done = False
             b = 0
             while True:
