@@ -42,8 +42,9 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="minimum gap between parts in mm (knife width / kerf; default 0)")
     g.add_argument("--margin", dest="nest_margin", type=non_negative, default=0.0, metavar="MM",
                    help="minimum distance from parts to the container edge and defects in mm (default 0)")
-    g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S",
-                   help="allowed rotations for every part: any, a list like 0,180, or step:90 "
+    g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S|A+-T",
+                   help="allowed rotations for every part: any, a list like 0,180, step:90, "
+                        "or a grain direction with a tolerance like 0+-5 "
                         "(default: each part's own setting; ESICUP: the instance's)")
     g.add_argument("--rotation-step", dest="nest_rotation_step", type=positive, default=30.0,
                    metavar="DEG", help="angle step tried for parts that may turn freely (default 30)")
@@ -69,9 +70,10 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="write the nested drawing as DXF")
     g.add_argument(f"--{pre}svg-out", dest="nest_svg_out", metavar="FILE.svg",
                    help="write a picture of the layout as SVG")
-    g.add_argument("--remnant-out", dest="nest_remnant_out", metavar="HIDE.dxf",
-                   help="with hides: write the unused material (defects, zones kept) as a hide "
-                        "DXF for the next job's --hide")
+    if primary:
+        g.add_argument("--remnant-out", dest="nest_remnant_out", metavar="HIDE.dxf",
+                       help="with hides: write the unused material (defects, zones kept) as a "
+                            "hide DXF for the next job's --hide")
 
 
 def options_from_args(args: argparse.Namespace):
