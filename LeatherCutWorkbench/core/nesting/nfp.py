@@ -243,8 +243,13 @@ class NfpCache:
         self.clock = clock or Clock()
         self._cache: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
         self._coarse: Dict[Tuple[int, int], Tuple[List[np.ndarray], Tuple[int, int, int, int]]] = {}
+        self.exact_s = 0.0                 # seconds spent on exact NFPs
         self._hull_forms: Dict[int, Tuple[Form, Form]] = {}
         self._piece_forms: Dict[int, Tuple[Forms, Forms]] = {}
+
+    def mean_exact_s(self) -> float:
+        """Mean seconds per exact NFP so far (0 before the first)."""
+        return self.exact_s / len(self._cache) if self._cache else 0.0
 
     def hull_forms(self, v: int) -> Tuple[Form, Form]:
         """Edge forms of variant ``v``'s convex hull and of its negation (cached)."""
@@ -269,8 +274,10 @@ class NfpCache:
         if hit is not None:
             return hit
         if self.clock.exact():
+            t0 = time.monotonic()
             hit = _arrays(pair_nfp(self.variants[a], self.variants[b],
                                    self.piece_forms(a)[0], self.piece_forms(b)[1]))
+            self.exact_s += time.monotonic() - t0
             self._cache[key] = hit
             return hit
         hit = self._coarse.get(key)

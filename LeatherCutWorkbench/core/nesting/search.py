@@ -193,7 +193,11 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     placer.clock.exact_until = budget.first_fill_until
     # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
     tr = placer.place(starts[0], abortable=False, variant_cap=4 if worker == 0 else None)
-    placer.clock.exact_until = math.inf
+    # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
+    # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
+    # evaluations; the other workers search exactly
+    if worker != 0 or placer.nfps.mean_exact_s() < 0.005:
+        placer.clock.exact_until = math.inf
     best = (cost_of(problem, starts[0], tr.placements), starts[0], tr)
     budget.improved(best[0], best[1], tr.placements)
     evals = 1
@@ -346,7 +350,7 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
                 first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
                 hard_stop: float = math.inf, give_up_at: float = math.inf) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
-    ("best", worker, cost, order, placements), every 100 evaluations
+    ("best", worker, cost, order, placements), every 10 evaluations
     ("evals", worker, count); the end as ("done", worker, evaluations) or
     ("error", worker, message).  ``stop_event`` set = stop now."""
     def on_best(cost, order, placements):
@@ -356,8 +360,7 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
 
     def tick(_cost) -> bool:              # called every 10 evaluations
         ticks[0] += 10
-        if ticks[0] % 100 == 0:
-            queue.put(("evals", worker, ticks[0]))
+        queue.put(("evals", worker, ticks[0]))
         return True
     budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
                     hard_stop=hard_stop, give_up_at=give_up_at)
