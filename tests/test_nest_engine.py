@@ -27,7 +27,10 @@ def valid(parts, layout, opts):
 
 def test_sheets_open_as_needed_and_fixed_count_reports_unplaced():
     parts = [rect("a", 60, 40, q=7)]          # 4 fit one 130 x 90 sheet
-    opts = NestOptions(container=ContainerSpec.sheet(130, 90), time_budget=0.5, workers=1)
+    # the budget covers preparing the shapes too: evaluations, not a short time,
+    # bound this search so a loaded machine gives the same result
+    opts = NestOptions(container=ContainerSpec.sheet(130, 90), time_budget=5, max_evaluations=300,
+                       workers=1)
     lay = nest(parts, opts)
     assert valid(parts, lay, opts) == []
     assert lay.unplaced == []
@@ -38,7 +41,8 @@ def test_sheets_open_as_needed_and_fixed_count_reports_unplaced():
     assert max(per["sheet1"]["parts"], per["sheet2"]["parts"]) == 4     # 4 is all a sheet holds
     assert lay.metrics["utilisation"] == pytest.approx(7 * 2400 / (2 * 130 * 90), abs=1e-6)
 
-    opts1 = NestOptions(container=ContainerSpec.sheet(130, 90, count=1), time_budget=0.3, workers=1)
+    opts1 = NestOptions(container=ContainerSpec.sheet(130, 90, count=1), time_budget=5,
+                        max_evaluations=300, workers=1)
     lay1 = nest(parts, opts1)
     assert len(lay1.placements) == 4 and len(lay1.unplaced) == 3
     assert any(f.code == "unplaced-parts" for f in lay1.findings)

@@ -34,20 +34,25 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                      help="nest on the hide(s) in this DXF: layers HIDE (outline), DEFECT, ZONE_<grade>")
     if primary:
         box.add_argument("--esicup", dest="nest_esicup", metavar="FILE.json",
-                         help="nest an ESICUP strip-packing instance (jagua-rs JSON) instead of a DXF")
+                         help="nest a benchmark instance instead of a DXF: ESICUP strip packing "
+                              "or jagua-rs bin packing with hides (bins, zones, min_quality)")
     g.add_argument("--sheets", dest="nest_sheets", type=int, metavar="N",
                    help="with --sheet: use at most N sheets and report what does not fit")
     g.add_argument("--spacing", dest="nest_spacing", type=non_negative, default=0.0, metavar="MM",
                    help="minimum gap between parts in mm (knife width / kerf; default 0)")
     g.add_argument("--margin", dest="nest_margin", type=non_negative, default=0.0, metavar="MM",
                    help="minimum distance from parts to the container edge and defects in mm (default 0)")
-    g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S",
-                   help="allowed rotations for every part: any, a list like 0,180, or step:90 "
+    g.add_argument("--rotations", dest="nest_rotations", metavar="any|LIST|step:S|A+-T",
+                   help="allowed rotations for every part: any, a list like 0,180, step:90, "
+                        "or a grain direction with a tolerance like 0+-5 "
                         "(default: each part's own setting; ESICUP: the instance's)")
     g.add_argument("--rotation-step", dest="nest_rotation_step", type=positive, default=30.0,
                    metavar="DEG", help="angle step tried for parts that may turn freely (default 30)")
     g.add_argument("--mirror", dest="nest_mirror", action="store_true",
                    help="allow mirrored copies of every part")
+    g.add_argument("--grade", dest="nest_grades", action="append", default=[], metavar="PART=G",
+                   help="grade of a part (id or name; repeatable): a letter A-D (A best) or a "
+                        "number; on a hide it lies only on material of that grade or better")
     g.add_argument("--copies", dest="nest_copies", type=int, default=None, metavar="N",
                    help="nest N copies of every recognised part (default: each part's quantity)")
     g.add_argument(f"--{pre}time", dest="nest_time", type=non_negative, default=10.0, metavar="S",
@@ -65,6 +70,10 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="write the nested drawing as DXF")
     g.add_argument(f"--{pre}svg-out", dest="nest_svg_out", metavar="FILE.svg",
                    help="write a picture of the layout as SVG")
+    if primary:
+        g.add_argument("--remnant-out", dest="nest_remnant_out", metavar="HIDE.dxf",
+                       help="with hides: write the unused material (defects, zones kept) as a "
+                            "hide DXF for the next job's --hide")
 
 
 def options_from_args(args: argparse.Namespace):
@@ -94,12 +103,18 @@ def options_from_args(args: argparse.Namespace):
         free = rots_override is None
         if st is not None:
             step = st
+    grades: Dict[str, str] = {}
+    for item in getattr(args, "nest_grades", None) or []:
+        part, sep, grade = item.rpartition("=")
+        if not sep or not part.strip() or not grade.strip():
+            raise InputError(f"bad --grade {item!r}: use PART=G, e.g. P3=A or 'Vamp size 38=2'")
+        grades[part.strip()] = grade.strip()
     opts = NestOptions(container=spec, spacing=args.nest_spacing, margin=args.nest_margin,
                        rotation_step=step, rotations_override=rots_override, free_rotation=free,
                        mirror_override=True if args.nest_mirror else None,
                        time_budget=args.nest_time, max_evaluations=args.nest_evaluations,
                        seed=getattr(args, "seed", 1), workers=args.nest_workers,
-                       engine=args.nest_engine)
+                       engine=args.nest_engine, grades=grades)
     opts.validate()
     return opts
 
@@ -125,7 +140,8 @@ def _parts_from_args(args, opts):
         if args.file:
             raise InputError("give either FILE or --esicup, not both")
         inst = read_esicup(args.nest_esicup)
-        opts.container = ContainerSpec.strip(inst.strip_height)
+        opts.container = ContainerSpec.hide(*inst.hides) if inst.hides else \
+            ContainerSpec.strip(inst.strip_height)
         return inst.parts, args.nest_esicup, []
     if not args.file:
         raise InputError("no drawing given: leathercut nest FILE.dxf --sheet WxH (or --esicup FILE.json)")
@@ -143,10 +159,12 @@ def run(args: argparse.Namespace) -> Report:
     from ..core.nesting import nest
     from ..core.nesting import outputs
 
+    t_start = _process_start()          # --time covers start-up and reading the drawing too
     opts = options_from_args(args)
     if opts is None:
         raise InputError("no container: give --sheet WxH, --strip W, --hide HIDE.dxf or --esicup FILE.json")
     parts, source, findings = _parts_from_args(args, opts)
+    opts.started_at = t_start
     if args.nest_copies is not None:
         if args.nest_copies < 1:
             raise InputError(f"--copies must be >= 1, got {args.nest_copies}")
@@ -163,9 +181,46 @@ def run(args: argparse.Namespace) -> Report:
             except OSError as exc:
                 raise InputError(f"cannot write: {exc.strerror}", source=path) from None
             written[key] = path
+    if getattr(args, "nest_remnant_out", None):
+        if opts.container.kind != "hide":
+            raise InputError("--remnant-out needs hides (--hide or a bin-packing --esicup)")
+        rem = outputs.remnants(parts, layout, opts.spacing)
+        try:
+            outputs.write_hide_dxf(args.nest_remnant_out, rem)
+        except OSError as exc:
+            raise InputError(f"cannot write: {exc.strerror}", source=args.nest_remnant_out) from None
+        written["remnant"] = args.nest_remnant_out
+        layout.metrics["remnants"] = [{"id": h.id, "area_mm2": round(abs(_area(h.outline)), 3),
+                                       "defects": len(h.defects), "zones": len(h.zones)}
+                                      for h in rem]
     data = report_dict(source, opts, layout, findings)
     data["outputs"] = written
     return Report(data=data, text=report_text(data))
+
+
+def _process_start() -> float:
+    """``time.monotonic()`` when this ``leathercut`` process started (Linux:
+    /proc/self/stat, whose start time counts clock ticks since boot like
+    CLOCK_MONOTONIC), so ``--time`` covers Python's start-up too.  Now when
+    the CLI runs inside another program (tests, scripts) or the start is
+    unknown or implausible."""
+    import sys
+    import time
+    now = time.monotonic()
+    if not os.path.basename(sys.argv[0] if sys.argv else "").startswith("leathercut"):
+        return now
+    try:
+        with open("/proc/self/stat", encoding="ascii") as fh:
+            ticks = float(fh.read().rsplit(")", 1)[1].split()[19])
+        start = ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return now
+    return start if now - 30.0 < start <= now else now
+
+
+def _area(ring) -> float:
+    from ..core.geometry import signed_area
+    return signed_area(list(ring))
 
 
 def report_dict(source: str, opts, layout, findings) -> Dict[str, Any]:
@@ -209,6 +264,14 @@ def report_text(d: Dict[str, Any]) -> str:
                      + (f" (gross {100 * m['utilisation_gross']:.2f} %)" if "utilisation_gross" in m else ""))
         for c in d["containers"]:
             lines.append(f"  {c['id']}: {c['parts']} parts, utilisation {100 * c['utilisation']:.2f} %")
+            on: Dict[int, List[str]] = {}
+            for g in m.get("grades", []):
+                if g["container"] == c["id"]:
+                    on.setdefault(g["material_grade"], []).append(
+                        f"{g['part']}#{g['copy']}" + (f" (grade {g['part_grade']})" if g["part_grade"] else ""))
+            for lv in sorted(on, reverse=True):
+                lines.append(f"    on grade {lv}: " + ", ".join(on[lv][:30])
+                             + (" ..." if len(on[lv]) > 30 else ""))
     if d["unplaced"]:
         lines.append("unplaced: " + ", ".join(f"{u['part']}#{u['copy']}" for u in d["unplaced"][:20]))
     for f in d["findings"]:

@@ -312,7 +312,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="19"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="24"/>
         <source>Auto-nest</source>
         <translation type="unfinished"></translation>
     </message>
@@ -337,7 +337,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="329"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="333"/>
         <source>Container</source>
         <translation type="unfinished"></translation>
     </message>
@@ -377,7 +377,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="335"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="339"/>
         <source>Defects</source>
         <translation type="unfinished"></translation>
     </message>
@@ -472,7 +472,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="325"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="329"/>
         <source>Layout</source>
         <translation type="unfinished"></translation>
     </message>
@@ -637,6 +637,11 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="55"/>
+        <source>Stop (keep the best layout)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="316"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
@@ -647,12 +652,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="566"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="584"/>
         <source>Tool paths</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="570"/>
+        <location filename="../../LeatherCutWorkbench/document/pipeline.py" line="588"/>
         <source>Tool {0}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -682,7 +687,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="58"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="117"/>
         <source>density {0:.1f} %</source>
         <translation type="unfinished"></translation>
     </message>
@@ -757,7 +762,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="60"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="119"/>
         <source>strip length {0:.1f} mm</source>
         <translation type="unfinished"></translation>
     </message>
@@ -787,12 +792,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="55"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="114"/>
         <source>utilisation {0:.1f} %</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="61"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="120"/>
         <source>{0} containers</source>
         <translation type="unfinished"></translation>
     </message>
@@ -817,7 +822,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="52"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="111"/>
         <source>{0} placed, {1} unplaced</source>
         <translation type="unfinished"></translation>
     </message>
@@ -937,12 +942,12 @@
 <context>
     <name>LeatherCut_AutoNest</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="68"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="161"/>
         <source>Auto-nest</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="69"/>
+        <location filename="../../LeatherCutWorkbench/commands/auto_nest.py" line="162"/>
         <source>Nest the recognised parts on sheets, a strip or a leather hide with defects</source>
         <translation type="unfinished"></translation>
     </message>

@@ -103,6 +103,14 @@ def steps():
     elapsed = time.monotonic() - t0
     check("nest cancelled from the panel", not ran and elapsed < 20 and Gui.Control.activeDialog(),
           f"{ran} after {elapsed:.1f} s: {p.status.text()}")
+    # Stop while the 60 s search runs: the best layout so far is kept, soon
+    stop = p.form.findChild(QtGui.QPushButton, "stopButton")
+    QtCore.QTimer.singleShot(2500, stop.click)
+    t0 = time.monotonic()
+    ran = p.preview()
+    elapsed = time.monotonic() - t0
+    check("nest stopped keeps the best layout", ran and elapsed < 15 and
+          len(pipeline.placed_objects(job)) == 7, f"{ran} after {elapsed:.1f} s: {p.status.text()}")
     p.set_widget("NestTimeBudget", 1.0)
     check("nest preview", p.preview(), p.status.text())
     check("progress bar reached", p.progress_bar.value() >= 90, p.progress_bar.value())

@@ -9,11 +9,13 @@ Public entry points::
 Modules: :mod:`options` (NestOptions, ContainerSpec), :mod:`shapes` (parts as
 polygons, orientation variants, spacing), :mod:`containers` (sheet / strip /
 hide, hide DXF layer convention), :mod:`nfp` (no-fit / inner-fit polygons),
+:mod:`convex` (convex pieces and sums for fast no-fit polygons),
 :mod:`blf` (bottom-left fill), :mod:`search` (anytime local search over
-order and orientations, one process per core), :mod:`checker` (independent
-validity check), :mod:`esicup` (benchmark instance reader),
+order and orientations, one process per core; time budget in :class:`search.Budget`),
+:mod:`checker` (independent validity check), :mod:`esicup` (benchmark
+instance reader: strips, and hides with quality zones),
 :mod:`sparrow_engine` (spyrrow in a subprocess), :mod:`outputs` (layout
-JSON, DXF, SVG).
+JSON, DXF, SVG, remnant hides).
 
 Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
 a placement the checker rejects is moved to ``unplaced`` with an error
@@ -22,7 +24,8 @@ finding (that would be a bug; it never happens in the tests).
 
 from __future__ import annotations
 
-from typing import List, Optional, Sequence
+from dataclasses import replace
+from typing import Callable, List, Optional, Sequence
 
 from ..errors import InputError
 from ..geometry import Transform2D
@@ -36,13 +39,24 @@ __all__ = ["nest", "placed_parts", "NestOptions", "ContainerSpec", "parse_rotati
            "read_hide_dxf", "check_layout"]
 
 
-def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[ProgressFn] = None) -> Layout:
+def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[ProgressFn] = None,
+         on_best: Optional[Callable[[Layout], None]] = None,
+         stop: Optional[Callable[[], bool]] = None) -> Layout:
     """Place every copy of every non-excluded part (see module doc).
 
-    Raises InputError for unusable options or parts, CancelledError when
-    ``progress`` returns False."""
+    Anytime: ``options.time_budget`` seconds cover everything from this call
+    on; ``on_best(layout)`` (own engine) receives every better layout found
+    (unchecked, at most twice a second) so a view can show it live;
+    ``stop()`` returning True ends the search early and keeps the best layout
+    so far.  Raises InputError for unusable options or parts, CancelledError
+    when ``progress`` returns False (Cancel discards)."""
     options.validate()
     active = [p for p in parts if not p.excluded]
+    if options.grades:
+        unknown = set(options.grades) - {p.id for p in active} - {p.name for p in active}
+        if unknown:
+            raise InputError(f"--grade names no part: {', '.join(sorted(unknown)[:5])}")
+        active = [replace(p, grade=options.part_grade(p.id, p.name, p.grade)) for p in active]
     ids = [p.id for p in active]
     if len(set(ids)) != len(ids):
         dup = sorted({i for i in ids if ids.count(i) > 1})
@@ -52,7 +66,7 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
         layout = run_sparrow(active, options, progress)
     else:
         from .engine import run_own
-        layout = run_own(active, options, progress)
+        layout = run_own(active, options, progress, on_best, stop)
     report(progress, 0.99, "checking the layout")
     problems = check_layout(active, layout, spacing=options.spacing, margin=options.margin,
                             tol=options.tolerance, chord_tol=options.chord_tol,

@@ -15,13 +15,15 @@ All coordinates are grid integers; a :class:`Bin` is one container instance
 
 from __future__ import annotations
 
+import math
+import time
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import pyclipper
 
-from .nfp import NfpCache
+from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
 
 _NZ = pyclipper.PFT_NONZERO
@@ -34,12 +36,18 @@ class BinSpec:
     ``rect`` (x0, y0, x1, y1) is the usable rectangle of a sheet or strip (after
     the margin; a strip's x1 is ignored: it is open).  A hide has ``regions``:
     per grade, the (outers, obstacles) rings of the material that grade may use
-    (after margins), turned into inner-fit regions per variant on demand."""
+    (after margins), turned into inner-fit regions per variant on demand, and
+    ``material``: the area of the largest region (a copy larger than what is
+    left of it cannot fit, so no inner-fit region is computed for it);
+    ``coarse``: per grade a subset of the region with few vertices and convex
+    obstacles, used under time pressure."""
 
     kind: str
     rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
     regions: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
+    material: float = math.inf    # hide: usable area (grid units^2) of its largest region
+    coarse: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
 
 
 class Placer:
@@ -47,15 +55,21 @@ class Placer:
 
     def __init__(self, variants: Sequence[Variant], type_variants: Sequence[Sequence[int]],
                  type_grade: Sequence[int], bins: Sequence[BinSpec], open_new: bool,
-                 max_bins: Optional[int], nfps: Optional[NfpCache] = None):
+                 max_bins: Optional[int], nfps: Optional[NfpCache] = None,
+                 clock: Optional[Clock] = None, type_area: Optional[Sequence[float]] = None):
         self.variants = variants
         self.type_variants = type_variants
         self.type_grade = type_grade
         self.bin_specs = list(bins)
         self.open_new = open_new
         self.max_bins = max_bins
-        self.nfps = nfps or NfpCache(variants)
-        self._ifp_cache: Dict[Tuple[int, int], List[IntPath]] = {}
+        self.nfps = nfps or NfpCache(variants, clock)
+        self.clock = self.nfps.clock
+        self.type_area = type_area       # true part areas, grid units^2 (for the hide prune)
+        #: default ``variant_cap`` of :meth:`place` (None: every orientation)
+        self.variant_cap: Optional[int] = None
+        self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
+        self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
 
     # ---------------------------------------------------------------- regions
     def _spec(self, b: int) -> BinSpec:
@@ -65,14 +79,25 @@ class Placer:
         """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""
         spec = self._spec(b)
         if spec.kind == "hide":
-            from .nfp import region_ifp
+            from .nfp import obstacle_forms, region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
-            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index)
+            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
-                outers, obstacles = spec.regions[rk]
-                hit = region_ifp(outers, obstacles, v.core)
-                self._ifp_cache[key] = hit
+                # out of time: the region of the bounding box (a subset, still valid;
+                # a 4-vertex ring sweeps the hide outline several times faster)
+                exact = self.clock.exact()
+                key = key[:2] + (exact,)
+                hit = self._ifp_cache.get(key)
+                if hit is None:
+                    outers, obstacles = spec.regions[rk] if exact or rk not in spec.coarse \
+                        else spec.coarse[rk]
+                    fk = (key[0], exact or rk not in spec.coarse)
+                    if fk not in self._ob_forms:
+                        self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
+                    hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
+                                     self._ob_forms[fk])
+                    self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
         if spec.kind == "strip":
@@ -82,6 +107,15 @@ class Placer:
         if lx > hx or ly > hy:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
+
+    def _may_fit(self, b: int, state: "BinState", t: int) -> bool:
+        """False when a copy of type ``t`` is larger than the material left on
+        hide ``b`` (exact: placed copies lie in the material, disjointly)."""
+        spec = self._spec(b)
+        if spec.kind != "hide" or self.type_area is None or spec.material == math.inf:
+            return True
+        used = sum(self.type_area[self.variants[u].type_index] for (u, _x, _y) in state.placed)
+        return self.type_area[t] <= spec.material - used
 
     def _can_open(self, n: int) -> bool:
         """May an (n+1)-th bin be opened?"""
@@ -131,8 +165,15 @@ class Placer:
 
     def place(self, sequence: Sequence[Tuple[int, Optional[int]]],
               prefix: Optional["Trace"] = None, keep: int = 0,
-              give_up: Optional[Tuple[float, Sequence[float]]] = None) -> Optional["Trace"]:
+              give_up: Optional[Tuple[float, Sequence[float]]] = None,
+              abortable: bool = True, variant_cap: Optional[int] = None) -> Optional["Trace"]:
         """Place ``sequence`` (type index, forced variant or None) in order.
+
+        Returns None when the fill is abandoned: it left out more area than
+        ``give_up`` = (limit, area per type) allows, or (``abortable``) the
+        clock's ``stop_at`` passed.  ``variant_cap``: a copy without a forced
+        variant tries at most this many orientations of its part, evenly
+        spread (a quick first fill of freely turning parts).
 
         With ``prefix`` (the trace of an earlier call) and ``keep`` = k, the first
         k items are taken as placed there (the search changes only later items).
@@ -149,8 +190,17 @@ class Placer:
         if give_up is not None:
             left_out = sum(give_up[1][sequence[p[0]][0]] for p in placements if p[1] < 0)
         for si in range(len(placements), len(sequence)):
+            if abortable and self.clock.expired():
+                return None
             t, forced = sequence[si]
+            if not abortable and time.monotonic() > self.clock.give_up_at:
+                placements.append((si, -1, -1, 0, 0))     # out of time: left unplaced
+                states.append(tuple(bs.copy() for bs in bins))
+                continue
             cands = [forced] if forced is not None else self.type_variants[t]
+            cap = variant_cap if variant_cap is not None else self.variant_cap
+            if forced is None and cap is not None and len(cands) > cap:
+                cands = [cands[(k * len(cands)) // cap] for k in range(cap)]
             done = False
             b = 0
             while True:
@@ -159,7 +209,7 @@ class Placer:
                         break
                     bins.append(self._new_bin(b))
                 best = None
-                for vi in cands:
+                for vi in (cands if self._may_fit(b, bins[b], t) else ()):
                     r = self.best_position(b, bins[b], vi)
                     if r is not None and (best is None or r < best[0]):
                         best = (r, vi)
@@ -181,6 +231,13 @@ class Placer:
                         return None
             states.append(tuple(bs.copy() for bs in bins))
         return Trace(placements, states)
+
+
+def _box(ring: IntPath) -> IntPath:
+    """The bounding rectangle of a ring (CCW)."""
+    xs = [p[0] for p in ring]
+    ys = [p[1] for p in ring]
+    return [[min(xs), min(ys)], [max(xs), min(ys)], [max(xs), max(ys)], [min(xs), max(ys)]]
 
 
 #: Open strips are searched up to this x (grid units) -- far beyond any layout.

@@ -8,7 +8,8 @@ converted to mm from the file's ``$INSUNITS``, unitless files are read as mm):
   outside every zone has grade 1; ``HIDE_<g>`` sets that base grade to g.
 * ``DEFECT`` (or ``DEFECT_<anything>``) -- closed regions no part may overlap
   (holes, scars, brands), kept ``margin`` mm away from parts.
-* ``ZONE_<g>`` -- closed quality zones of grade g (integer, higher = better).
+* ``ZONE_<g>`` -- closed quality zones of grade g (integer, higher = better,
+  or a letter A-D = 4-1 as in :mod:`core.dxfimport.grades`).
   Where zones nest, the smallest zone containing a point decides its grade.
 
 A part of grade p may only lie where the grade is >= p (grade 0 parts go
@@ -29,8 +30,13 @@ from ..errors import InputError
 from ..geometry import Point
 from ..model import Container
 
-_ZONE = re.compile(r"^ZONE_(-?\d+)$", re.I)
-_HIDE = re.compile(r"^HIDE(?:_(-?\d+))?$", re.I)
+_ZONE = re.compile(r"^ZONE_(-?\d+|[A-D])$", re.I)
+_HIDE = re.compile(r"^HIDE(?:_(-?\d+|[A-D]))?$", re.I)
+
+
+def _grade(text: str) -> int:
+    from ..dxfimport.grades import LETTERS
+    return LETTERS[text.upper()] if text.upper() in LETTERS else int(text)
 
 
 def rectangle(x0: float, y0: float, x1: float, y1: float) -> List[Point]:
@@ -89,9 +95,9 @@ def read_hide_dxf(path: str, flatten_tol: float = 0.1) -> List[Container]:
             raise InputError("region outline crosses itself or has no area", src)
         ring = _ccw(pts)
         if hm:
-            outlines.append((int(hm.group(1)) if hm.group(1) else 1, ring, src))
+            outlines.append((_grade(hm.group(1)) if hm.group(1) else 1, ring, src))
         elif zm:
-            zones.append((int(zm.group(1)), ring, src))
+            zones.append((_grade(zm.group(1)), ring, src))
         else:
             defects.append((ring, src))
     if not outlines:

@@ -9,23 +9,25 @@ The caller (:func:`nest`) runs the validity checker on the result.
 
 from __future__ import annotations
 
+import math
 import multiprocessing as mp
 import os
 import sys
 import time
 from contextlib import contextmanager
-from typing import Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
+import pyclipper
 from shapely.geometry import Polygon
 
-from ..errors import CancelledError
+from ..errors import CancelledError, LeatherCutError
 from ..model import Container, Finding, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
 from .options import NestOptions
-from .search import Problem, _worker_entry, search
+from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part, to_grid
 
 #: The grid resolution: the largest container or part dimension spans this many units.
@@ -65,12 +67,40 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
     bins = []
     for c in spec.hides:
         regions: Dict[int, Tuple[list, list]] = {}
+        coarse: Dict[int, Tuple[list, list]] = {}
+        material = 0.0
+        xs = [p[0] for p in c.outline]
+        ys = [p[1] for p in c.outline]
+        tol = 0.004 * max(max(xs) - min(xs), max(ys) - min(ys))
         for g in sorted(set(grades)):
-            outers, holes, _ = shrink_for_margin(c, g, m)
+            outers, holes, region = shrink_for_margin(c, g, m)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
                           [to_grid(_arr(r), scale) for r in holes])
-        bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades}))
+            if region is not None:
+                material = max(material, region.area * scale * scale)
+                coarse[g] = _coarse_region(region, tol, scale)
+        bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades},
+                            material=material, coarse=coarse))
     return bins, list(spec.hides), False, len(spec.hides)
+
+
+def _coarse_region(region, tol: float, scale: float) -> Tuple[list, list]:
+    """A subset of a hide region with few vertices, for inner-fit regions under
+    time pressure: shrunk by ``tol`` mm then simplified within 0.9 ``tol``
+    (so it stays inside), holes as their convex hulls (which contain them)."""
+    from .containers import polygons_of
+    from .shapes import convex_hull
+    small = region.buffer(-tol, 4, join_style=2).simplify(0.9 * tol)
+    outers, obstacles = [], []
+    for p in polygons_of(small):
+        ring = to_grid(_arr(p.exterior.coords[:-1]), scale)
+        if len(ring) >= 3:
+            outers.append(ring if pyclipper.Orientation(ring) else ring[::-1])
+        for r in p.interiors:
+            hole = convex_hull(to_grid(_arr(r.coords[:-1]), scale))
+            if len(hole) >= 3:
+                obstacles.append(hole)
+    return outers, obstacles
 
 
 def _arr(ring):
@@ -84,10 +114,72 @@ def _workers(options: NestOptions) -> int:
     return max(1, min(os.cpu_count() or 1, 8))
 
 
+#: seconds the parent waits after the deadline for workers to finish, then ends them
+_GRACE_S = 0.3
+
+
+def _deadlines(t_start: float, budget: float, n_copies: int
+               ) -> Tuple[float, float, float, float, float]:
+    """(search end, first-fill exact limit of worker 0, of the other workers,
+    bounding boxes only in the first fill from the search end, and the first
+    fill's last resort end at 1.5 T + 2 s: only a machine too loaded even for
+    box-only no-fit polygons ever leaves copies unplaced for lack of time).
+
+    The search ends early enough for the final check and layout building
+    (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
+    fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
+    within a second or two; the others fill exactly for up to 40 % of T."""
+    if budget <= 0:
+        return math.inf, math.inf, math.inf, math.inf, math.inf
+    reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
+    t_end = t_start + max(budget - reserve, 0.5 * budget)
+    quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
+    return t_end, quick, t_start + 0.4 * budget, t_end, t_start + 1.5 * budget + 2.0
+
+
+class _Best:
+    """Best layout so far over all workers (ties: the lowest worker index) and
+    the live report of it: progress message, optional ``on_best`` layout."""
+
+    def __init__(self, summary, on_best, build):
+        self.per_worker: Dict[int, tuple] = {}
+        self.evals: Dict[int, int] = {}      # evaluations reported so far per worker
+        self.best: Optional[tuple] = None
+        self.summary = summary
+        self.on_best = on_best
+        self.build = build
+        self.shown = 0.0
+        self.dirty = False
+
+    def offer(self, worker: int, cost, order, placements) -> None:
+        self.per_worker[worker] = (cost, order, placements)
+        if self.best is None or (cost, worker) < (self.best[0], self.best[3]):
+            self.best = (cost, order, placements, worker)
+            self.dirty = True
+
+    def message(self) -> str:
+        return self.summary(self.best[0], self.best[2]) if self.best else "first fill"
+
+    def publish(self, force: bool = False) -> None:
+        """Hand the best layout to ``on_best`` (at most twice a second)."""
+        now = time.monotonic()
+        if self.on_best is None or not self.dirty or (not force and now - self.shown < 0.5):
+            return
+        self.shown, self.dirty = now, False
+        self.on_best(self.build(self.best[1], self.best[2]))
+
+
 def run_own(parts: Sequence[Part], options: NestOptions,
-            progress: Optional[ProgressFn] = None) -> Layout:
-    """Nest with the project's engine (see module doc); unchecked result."""
-    t_start = time.monotonic()
+            progress: Optional[ProgressFn] = None,
+            on_best: Optional[Callable[[Layout], None]] = None,
+            stop: Optional[Callable[[], bool]] = None) -> Layout:
+    """Nest with the project's engine (see module doc); unchecked result.
+
+    The time budget counts from this call (shapes, no-fit polygons, first
+    fill and search).  ``on_best(layout)`` receives each better layout (at
+    most twice a second); ``stop()`` returning True ends the search and keeps
+    the best layout so far (``progress`` returning False cancels)."""
+    t_start = options.started_at if options.started_at is not None else time.monotonic()
     report(progress, 0.0, "preparing part shapes")
     types = [piece_from_part(p, options.chord_tol, options.rotation_step,
                              options.part_rotations(p.rotations), options.mirror_override)
@@ -104,38 +196,76 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     grades = [t.grade for t in types]
     bins, hides, open_new, max_bins = _bins(options, scale, half_gap, grades)
     problem = Problem(variants, type_variants, grades, [t.area for t in types], bins,
-                      open_new, max_bins)
+                      open_new, max_bins, scale)
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
     report(progress, 0.02, f"nesting {len(copies)} copies of {len(types)} parts")
 
     n_workers = _workers(options)
     budget = options.time_budget
-    results = []
+    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies))
+    max_eval = options.max_evaluations if budget > 0 else 4
+    net = [net_area(h) for h in hides]
+
+    def summary(cost, placements) -> str:
+        return _summary(problem, options, scale, net, cost, placements, len(copies))
+
+    def build(order, placements) -> Layout:
+        return _to_layout(parts, types, variants, order, placements, options, scale, hides)
+
+    best = _Best(summary, on_best, build)
+
+    def frac() -> float:
+        if budget <= 0:
+            return 0.5
+        return 0.05 + 0.9 * min(1.0, (time.monotonic() - t_start) / budget)
+
     if n_workers == 1 or budget <= 0 or len(copies) < 2:
-        results.append(search(problem, copies, options.seed, 0, budget,
-                                  options.max_evaluations if budget > 0 else 4,
-                                  tick=_tick(progress, t_start, budget)))
+        def tick(_cost) -> bool:
+            best.publish()
+            return progress is None or progress(frac(), best.message()) is not False
+
+        b = Budget(t_end, quick, max_eval, stop, lambda c, o, p: best.offer(0, c, o, p), tick,
+                   hard_stop=boxes, give_up_at=hard)
+        evaluations = search(problem, copies, options.seed, 0, b)[3]
+        workers_used = 1
     else:
-        results = _run_pool(problem, copies, options, n_workers, progress, t_start)
-    best_i = min(range(len(results)), key=lambda i: (results[i][0], i))
-    cost, order, placements, _ = results[best_i]
-    evaluations = sum(r[3] for r in results)
+        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end,
+                                (quick, slow, boxes, hard), max_eval, best, progress, frac, stop)
+        workers_used = n_workers
+    best.publish(force=True)
+    cost, order, placements, _ = best.best
     report(progress, 0.97, "building the layout")
-    layout = _to_layout(parts, types, variants, order, placements, options, scale, hides)
+    layout = build(order, placements)
+    if layout.unplaced and budget > 0 and time.monotonic() > hard:
+        findings.append(Finding("warning", "time-budget-short",
+                                f"the time budget of {budget:g} s ended during the first fill: "
+                                "copies it did not reach are unplaced; give more time"))
     layout.findings.extend(findings)
-    layout.metrics.update({"engine": "own", "workers": len(results), "evaluations": evaluations,
-                           "time_s": round(time.monotonic() - t_start, 3), "seed": options.seed})
+    layout.metrics.update({"engine": "own", "workers": workers_used, "evaluations": evaluations,
+                           "time_s": round(time.monotonic() - t_start, 3), "seed": options.seed,
+                           "stopped": bool(stop is not None and stop())})
     return layout
 
 
-def _tick(progress: Optional[ProgressFn], t0: float, budget: float):
-    if progress is None:
-        return None
-
-    def tick(best_cost) -> bool:
-        frac = 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / max(budget, 1e-9))
-        return progress(frac, f"searching: best {best_cost}") is not False
-    return tick
+def _summary(problem: Problem, options: NestOptions, scale: float, net: Sequence[float],
+             cost, placements, n_copies: int) -> str:
+    """One line on a layout in grid units: placed copies and the figure of merit."""
+    placed = [(si, b) for (si, b, vi, tx, ty) in placements if b >= 0]
+    area = n_copies and sum(problem.type_area[problem.variants[vi].type_index]
+                            for (si, b, vi, tx, ty) in placements if b >= 0)
+    head = f"best: {len(placed)}/{n_copies} placed"
+    spec = options.container
+    used = cost[1]
+    if spec.kind == "strip":
+        length = cost[2] / scale
+        dens = area / (length * spec.height) if length > 0 else 0.0
+        return f"{head}, length {length:.1f} mm, density {100 * dens:.1f} %"
+    if spec.kind == "sheet":
+        util = area / (used * spec.width * spec.height) if used else 0.0
+        return f"{head} on {used} sheet(s), utilisation {100 * util:.1f} %"
+    total = sum(net[:used])
+    util = area / total if total else 0.0
+    return f"{head} on {used} hide(s), utilisation {100 * util:.1f} %"
 
 
 @contextmanager
@@ -145,8 +275,8 @@ def _closable_stdin() -> Iterator[None]:
     A starting ``multiprocessing`` worker first calls ``sys.stdin.close()``.
     FreeCAD's GUI replaces ``sys.stdin`` with an object that has no
     ``close()``: the worker would die with AttributeError and the pool respawn
-    it forever (the search would hang).  While the pool lives, ``sys.stdin`` is
-    then a read-only handle on the null device."""
+    it forever (the search would hang).  While the workers live, ``sys.stdin``
+    is then a read-only handle on the null device."""
     original = sys.stdin
     if original is None or callable(getattr(original, "close", None)):
         yield
@@ -159,33 +289,75 @@ def _closable_stdin() -> Iterator[None]:
         replacement.close()
 
 
-def _run_pool(problem: Problem, copies: List[int], options: NestOptions, n: int,
-              progress: Optional[ProgressFn], t0: float):
-    """One search per worker process; progress is polled here, cancel terminates."""
+def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: float,
+              fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
+              progress: Optional[ProgressFn], frac, stop) -> int:
+    """One search process per worker.  The parent collects every new best,
+    reports it live, and ends the workers itself ``_GRACE_S`` after the
+    deadline (or on Stop): the wall time holds whatever a worker is doing.
+    Returns the evaluations the workers reported."""
     with _closable_stdin():
-        return _run_workers(problem, copies, options, n, progress, t0)
+        ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
+        queue = ctx.Queue()
+        stop_event = ctx.Event()
+        procs = [ctx.Process(target=worker_main, daemon=True,
+                             args=(problem, copies, seed, i, t_end,
+                                   fill_limits[0] if i == 0 else fill_limits[1],
+                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3]))
+                 for i in range(n)]
+        for p in procs:
+            p.start()
+        done: Dict[int, int] = {}
+        errors: List[str] = []
+        try:
+            while len(done) + len(errors) < n:
+                _drain(queue, best, done, errors, timeout=0.05)
+                best.publish()
+                report(progress, frac(), best.message())
+                if stop is not None and stop() and best.best is not None:
+                    stop_event.set()
+                if time.monotonic() > t_end:
+                    stop_event.set()
+                if stop_event.is_set() and best.best is not None:
+                    t_grace = time.monotonic() + _GRACE_S
+                    while len(done) + len(errors) < n and time.monotonic() < t_grace:
+                        _drain(queue, best, done, errors, timeout=0.02)
+                    break
+                if not any(p.is_alive() for p in procs) and queue.empty():
+                    break
+        except CancelledError:
+            stop_event.set()
+            raise
+        finally:
+            for p in procs:
+                if p.is_alive():
+                    p.terminate()
+            for p in procs:
+                p.join(1.0)
+            queue.close()
+    if best.best is None:
+        raise LeatherCutError("nesting workers failed: " + ("; ".join(errors) or "no layout"))
+    return sum(max(done.get(i, 0), best.evals.get(i, 0)) for i in range(n))
 
 
-def _run_workers(problem: Problem, copies: List[int], options: NestOptions, n: int,
-                 progress: Optional[ProgressFn], t0: float):
-    ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
-    budget = options.time_budget
-    args = [(problem, copies, options.seed, i, budget, options.max_evaluations) for i in range(n)]
-    pool = ctx.Pool(n)
-    try:
-        pending = [pool.apply_async(_worker_entry, (a,)) for a in args]
-        while not all(p.ready() for p in pending):
-            frac = 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / max(budget, 1e-9))
-            report(progress, frac, f"searching with {n} workers")
-            time.sleep(0.1)
-        results = [p.get() for p in pending]
-    except CancelledError:
-        pool.terminate()
-        raise
-    finally:
-        pool.close()
-        pool.join()
-    return results
+def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout: float) -> None:
+    """Read every waiting worker message (waiting up to ``timeout`` for the first)."""
+    import queue as _q
+    wait = timeout
+    while True:
+        try:
+            msg = queue.get(timeout=wait) if wait > 0 else queue.get_nowait()
+        except _q.Empty:
+            return
+        wait = 0
+        if msg[0] == "best":
+            best.offer(msg[1], msg[2], msg[3], msg[4])
+        elif msg[0] == "done":
+            done[msg[1]] = msg[2]
+        elif msg[0] == "evals":
+            best.evals[msg[1]] = msg[2]
+        else:
+            errors.append(msg[2])
 
 
 def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, order,
@@ -217,16 +389,41 @@ def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, orde
             names[b] = f"sheet{n + 1}"
             containers.append(Container(id=names[b], kind="sheet",
                                         outline=rectangle(0.0, 0.0, spec.width, spec.height)))
-    else:
-        for b, c in enumerate(hides):
-            names[b] = c.id
-            containers.append(c)
+    else:                                   # the hides that hold parts, in order
+        for b in sorted({b for b, _ in rows}):
+            names[b] = hides[b].id
+            containers.append(hides[b])
     for b, pl in rows:
         pl.container = names[b]
     layout = Layout(containers=containers, placements=[pl for _, pl in rows], unplaced=unplaced,
                     metrics={}, findings=[])
     fill_metrics(parts, layout, options)
     return layout
+
+
+def material_grades(layout: Layout, placed: Sequence[Polygon], grade: Dict[str, int],
+                    tol: float) -> List[Dict[str, object]]:
+    """Per placement on a hide: the part's grade and the grade of the material
+    it lies on (the lowest grade under it: the best g whose usable region
+    holds the whole placed shape within ``tol`` x perimeter)."""
+    from .containers import usable_region
+    conts = {c.id: c for c in layout.containers}
+    regions: Dict[tuple, object] = {}
+    out: List[Dict[str, object]] = []
+    for pl, g in zip(layout.placements, placed):
+        c = conts[pl.container]
+        levels = sorted({c.base_grade} | {zg for zg, _ in c.zones}, reverse=True)
+        lies_on = min(levels)
+        for lv in levels:
+            key = (c.id, lv)
+            if key not in regions:
+                regions[key] = usable_region(c, lv)
+            if g.difference(regions[key]).area <= tol * g.exterior.length:
+                lies_on = lv
+                break
+        out.append({"part": pl.part_id, "copy": pl.copy, "container": pl.container,
+                    "part_grade": grade.get(pl.part_id, 0), "material_grade": lies_on})
+    return out
 
 
 def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) -> None:
@@ -238,12 +435,17 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
     area: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
     extent: Dict[str, float] = {c.id: 0.0 for c in layout.containers}
     count: Dict[str, int] = {c.id: 0 for c in layout.containers}
+    grade = {p.id: p.grade for p in parts}
+    placed = []
     for pl in layout.placements:
         g = placed_polygon(polys[pl.part_id], pl.x, pl.y, pl.angle, pl.mirrored)
         area[pl.container] += g.area
         extent[pl.container] = max(extent[pl.container], g.bounds[2])
         count[pl.container] += 1
+        placed.append(g)
     metrics = layout.metrics
+    if spec.kind == "hide":
+        metrics["grades"] = material_grades(layout, placed, grade, options.tolerance)
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
         c = layout.containers[0]
@@ -277,7 +479,7 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
                         "utilisation": round(area[c.id] / na, 6) if na else 0.0,
                         "utilisation_gross": round(area[c.id] / ga, 6) if ga else 0.0,
                         "defects": len(c.defects), "zones": len(c.zones)})
-        metrics.update({"hides": len(layout.containers),
+        metrics.update({"hides": len(layout.containers), "hides_available": len(spec.hides),
                         "utilisation": round(total_used / total_net, 6) if total_net else 0.0,
                         "utilisation_gross": round(total_used / total_gross, 6) if total_gross else 0.0,
                         "item_area_mm2": round(total_used, 3)})

@@ -1,29 +1,45 @@
-"""Reader for ESICUP strip-packing instances in the jagua-rs / sparrow JSON format.
+"""Reader for benchmark instances in the jagua-rs / sparrow JSON formats.
 
-Format (see tests/data/nest/README.md): ``strip_height``; ``items`` with ``id``,
-``demand``, optional ``allowed_orientations`` (degrees; absent = any angle)
-and ``shape`` of type ``simple_polygon`` (vertices, not closed), ``polygon``
-(``outer`` + ``inner`` rings) or ``rectangle`` (``x_min, y_min, width,
-height``).  Items become :class:`Part` objects with line segments, so the
-instance runs through exactly the same engine as recognised DXF parts.
+Strip packing (see tests/data/nest/README.md): ``strip_height``; ``items``
+with ``id``, ``demand``, optional ``allowed_orientations`` (degrees; absent =
+any angle) and ``shape`` of type ``simple_polygon`` (vertices, not closed),
+``polygon`` (``outer`` + ``inner`` rings) or ``rectangle`` (``x_min, y_min,
+width, height``).
+
+Bin packing with quality zones (jagua-rs; the Baldacci et al. 2014 leather
+hides): ``bins`` instead of ``strip_height``, each with ``stock`` (copies,
+default 1), ``cost``, ``shape`` (a polygon: ``outer`` plus ``inner`` rings =
+holes of the hide) and ``zones`` (``quality`` q, ``shape``; quality 0 is a
+hole); items may carry ``min_quality`` m: such an item may lie on zones of
+quality >= m, an item without it needs full quality (outside every zone).
+jagua-rs' older PascalCase files (``Items`` / ``Objects`` with ``Demand``,
+``BaseQuality``, ``Stock``, ``Zones`` / ``Quality``, ``Shape.Outer`` /
+``Shape.Inner``) read the same.  Bins become hides (:class:`Container`):
+full quality = 1 + the highest quality in the file is the hide's base grade,
+zones keep their quality as grade, holes and quality-0 zones are defects; an
+item's grade is its ``min_quality`` (else full quality).
+
+Items become :class:`Part` objects with line segments, so an instance runs
+through exactly the same engine as recognised DXF parts.
 """
 
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
-from typing import List, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence
 
 from ..errors import InputError
 from ..geometry import LineSeg, signed_area
-from ..model import Contour, Part
+from ..model import Container, Contour, Part
 
 
 @dataclass
 class EsicupInstance:
     name: str
-    strip_height: float
+    strip_height: Optional[float]         # None for a bin-packing (hide) instance
     parts: List[Part]
+    hides: List[Container] = field(default_factory=list)
 
     @property
     def item_area(self) -> float:
@@ -51,13 +67,23 @@ def read_esicup(path: str) -> EsicupInstance:
         raise InputError(f"cannot read ESICUP instance: {exc.strerror}", path) from None
     except json.JSONDecodeError as exc:
         raise InputError(f"not a JSON file (line {exc.lineno}: {exc.msg})", path) from None
+    if isinstance(data, dict) and ("bins" in data or "Objects" in data):
+        return _read_bins(path, _snake(data))
     try:
         height = float(data["strip_height"])
         items = data["items"]
     except (KeyError, TypeError, ValueError):
-        raise InputError("not an ESICUP strip-packing instance (needs strip_height and items)",
-                         path) from None
+        raise InputError("not an ESICUP strip-packing instance (needs strip_height and items) "
+                         "nor a bin-packing one (bins and items)", path) from None
+    parts = _items(path, items)
+    return EsicupInstance(name=str(data.get("name", "")), strip_height=height, parts=parts)
+
+
+def _items(path: str, items: Any, grade_of=None) -> List[Part]:
+    """Parts from the ``items`` list (``grade_of(item)``: the part's grade)."""
     parts: List[Part] = []
+    if not isinstance(items, list):
+        raise InputError("items must be a list", path)
     for n, it in enumerate(items):
         iid = str(it.get("id", n))
         src = f"{path}: item {iid}"
@@ -87,7 +113,88 @@ def read_esicup(path: str) -> EsicupInstance:
         if demand < 0:
             raise InputError(f"negative demand {demand}", src)
         parts.append(Part(id=iid, outer=outer, holes=holes, name=iid, quantity=demand,
-                          rotations=rots, mirror_allowed=False))
+                          rotations=rots, mirror_allowed=False,
+                          grade=grade_of(it) if grade_of else 0))
     if not parts:
         raise InputError("instance has no items", path)
-    return EsicupInstance(name=str(data.get("name", "")), strip_height=height, parts=parts)
+    return parts
+
+
+_PASCAL = {"Name": "name", "Items": "items", "Objects": "bins", "Demand": "demand",
+           "BaseQuality": "min_quality", "Quality": "quality", "Stock": "stock", "Cost": "cost",
+           "Zones": "zones", "Shape": "shape", "Outer": "outer", "Inner": "inner", "Id": "id",
+           "AllowedOrientations": "allowed_orientations"}
+
+
+def _snake(data: Any) -> Any:
+    """jagua-rs' older PascalCase keys to the snake_case ones (shapes there are
+    ``{"Outer", "Inner"}`` without a type: they become ``polygon`` shapes)."""
+    if isinstance(data, list):
+        return [_snake(v) for v in data]
+    if not isinstance(data, dict):
+        return data
+    if "Outer" in data and "type" not in data:
+        return {"type": "polygon", "data": {"outer": data["Outer"], "inner": data.get("Inner", [])}}
+    return {_PASCAL.get(k, k): _snake(v) for k, v in data.items()}
+
+
+def _rings(shape: Dict, src: str) -> "tuple[list, list]":
+    """(outer ring, inner rings) of a bin or zone shape, as point lists."""
+    kind = shape.get("type")
+    if kind == "simple_polygon":
+        return [(float(x), float(y)) for x, y in shape["data"]], []
+    if kind == "polygon":
+        d = shape["data"]
+        return ([(float(x), float(y)) for x, y in d["outer"]],
+                [[(float(x), float(y)) for x, y in r] for r in d.get("inner", [])])
+    raise InputError(f"unsupported shape type {kind!r}", src)
+
+
+def _ring_pts(c: Contour) -> list:
+    return [s.start for s in c.segments]
+
+
+def _read_bins(path: str, data: Dict) -> EsicupInstance:
+    """A bin-packing instance with quality zones (see module doc)."""
+    try:
+        bins, items = data["bins"], data["items"]
+        quals = [int(z["quality"]) for b in bins for z in b.get("zones", [])]
+        quals += [int(it["min_quality"]) for it in items if it.get("min_quality") is not None]
+    except (KeyError, TypeError, ValueError) as exc:
+        raise InputError(f"malformed bin-packing instance ({type(exc).__name__}: {exc})",
+                         path) from None
+    full = max(quals, default=0) + 1
+
+    def grade_of(it) -> int:
+        m = it.get("min_quality")
+        return full if m is None else int(m)
+
+    parts = _items(path, items, grade_of)
+    hides: List[Container] = []
+    for n, b in enumerate(bins):
+        src = f"{path}: bin {b.get('id', n)}"
+        try:
+            outer, inner = _rings(b["shape"], src)
+            stock = int(b.get("stock", 1))
+            defects = [_ring_pts(_contour(f"{src}/hole{k}", r, True)) for k, r in enumerate(inner)]
+            zones = []
+            for k, z in enumerate(b.get("zones", [])):
+                zo, _zi = _rings(z["shape"], src)
+                ring = _ring_pts(_contour(f"{src}/zone{k}", zo, True))
+                if int(z["quality"]) <= 0:
+                    defects.append(ring)
+                else:
+                    zones.append((int(z["quality"]), ring))
+            ring = _ring_pts(_contour(f"{src}/outer", outer, True))
+        except InputError:
+            raise
+        except (KeyError, TypeError, ValueError) as exc:
+            raise InputError(f"malformed bin ({type(exc).__name__}: {exc})", src) from None
+        for k in range(max(stock, 0)):
+            hides.append(Container(id=f"bin{b.get('id', n)}" + (f"_{k + 1}" if stock > 1 else ""),
+                                   kind="hide", outline=list(ring), defects=[list(d) for d in defects],
+                                   zones=[(g, list(r)) for g, r in zones], base_grade=full))
+    if not hides:
+        raise InputError("instance has no bins", path)
+    return EsicupInstance(name=str(data.get("name", "")), strip_height=None, parts=parts,
+                          hides=hides)

@@ -5,8 +5,9 @@ Units: mm for every length, degrees for every angle, seconds for times.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from ..errors import InputError
 from ..model import Container
@@ -85,6 +86,11 @@ class NestOptions:
       spacing offsets use it as arc tolerance.
     * ``tolerance`` -- the validity checker's length tolerance (mm): overlaps,
       protrusions and spacing shortfalls thinner than this are accepted.
+    * ``grades`` -- grade per part id or part name (a whole number or a letter
+      A-D, A best; see :mod:`core.dxfimport.grades`), replacing the part's own.
+    * ``started_at`` -- ``time.monotonic()`` when the user asked for the nest
+      (the CLI: before reading the drawing); the time budget counts from there.
+      None: from the call of :func:`nest`.  Set as an attribute.
     """
 
     container: ContainerSpec = field(default_factory=ContainerSpec)
@@ -101,6 +107,16 @@ class NestOptions:
     engine: str = "own"
     chord_tol: float = 0.05
     tolerance: float = 1e-3
+    grades: Dict[str, Any] = field(default_factory=dict)
+    started_at: Optional[float] = field(default=None, init=False)
+
+    def part_grade(self, part_id: str, name: str, own: int) -> int:
+        """The grade a part nests with: ``grades`` by id, then by name, else its own."""
+        from ..dxfimport.grades import parse_grade
+        for key in (part_id, name):
+            if key and key in self.grades:
+                return parse_grade(self.grades[key], f"grade of part {key}")
+        return own
 
     def part_rotations(self, own: Optional[List[float]]) -> Optional[List[float]]:
         """The allowed angles of a part under these options (None = any angle)."""
@@ -120,14 +136,18 @@ class NestOptions:
             raise InputError(f"unknown nesting engine {self.engine!r} (own or sparrow)")
         if self.workers is not None and self.workers < 1:
             raise InputError(f"workers must be >= 1, got {self.workers}")
+        for key in self.grades:
+            self.part_grade(key, "", 0)
         if self.chord_tol <= 0 or self.tolerance <= 0:
             raise InputError("chord tolerance and checker tolerance must be > 0 mm")
 
 
 def parse_rotations(text: str) -> Tuple[Optional[List[float]], Optional[float]]:
     """Parse a ``--rotations`` value: ``any`` -> (None, None); ``0,180`` ->
-    ([0, 180], None); ``step:90`` -> ([0, 90, 180, 270], 90)."""
-    t = text.strip().lower()
+    ([0, 180], None); ``step:90`` -> ([0, 90, 180, 270], 90); a grain
+    direction with a tolerance, ``0+-5`` (or ``0±5``; several: ``0+-5,180+-5``)
+    -> the angles from -5 to 5 degrees in equal steps of at most 2.5."""
+    t = text.strip().lower().replace("±", "+-")
     if t == "any":
         return None, None
     try:
@@ -137,9 +157,21 @@ def parse_rotations(text: str) -> Tuple[Optional[List[float]], Optional[float]]:
                 raise ValueError
             n = max(1, int(round(360.0 / step)))
             return [round(i * step, 9) % 360.0 for i in range(n) if i * step < 360.0 - 1e-9], step
-        vals = [float(v) % 360.0 for v in t.split(",") if v.strip()]
+        vals: List[float] = []
+        for v in (v.strip() for v in t.split(",")):
+            if not v:
+                continue
+            if "+-" in v:
+                base, tol = (float(x) for x in v.split("+-"))
+                if not 0 <= tol < 180:
+                    raise ValueError
+                n = int(math.ceil(tol / 2.5)) if tol > 0 else 0
+                vals += [round((base + tol * k / max(n, 1)) % 360.0, 9) for k in range(-n, n + 1)]
+            else:
+                vals.append(float(v) % 360.0)
         if not vals:
             raise ValueError
         return sorted(set(vals)), None
     except ValueError:
-        raise InputError(f"bad --rotations value {text!r}: use any, a list like 0,180 or step:90") from None
+        raise InputError(f"bad --rotations value {text!r}: use any, a list like 0,180, step:90 "
+                         "or a grain tolerance like 0+-5") from None

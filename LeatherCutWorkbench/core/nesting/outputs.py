@@ -14,6 +14,9 @@ The DXF (ezdxf, R2010, $INSUNITS mm) puts each container on its own offset
 (sheets side by side, 10 % apart) with layers ``CONTAINER``, ``DEFECT``,
 ``ZONE_<g>``, the transformed part contours on ``PARTS`` (arcs stay arcs and
 circles) and each copy's id ``<part>#<copy>`` as TEXT on ``LABELS``.
+
+Remnants (``--remnant-out``): the unused material of the hides, written as a
+hide DXF the next ``nest --hide`` reads (:func:`remnants`, :func:`write_hide_dxf`).
 """
 
 from __future__ import annotations
@@ -25,7 +28,7 @@ from typing import Dict, List, Sequence, Tuple
 from shapely.geometry import Polygon
 
 from ..geometry import ArcSeg, LineSeg
-from ..model import Layout, Part
+from ..model import Container, Layout, Part
 from . import placed_parts
 
 
@@ -164,6 +167,71 @@ def render_svg(parts: Sequence[Part], layout: Layout, title: str = "") -> str:
                    f'{pl.angle:g} deg{" mirrored" if pl.mirrored else ""}</title></path>')
     out.append("</g></svg>")
     return "\n".join(out) + "\n"
+
+
+def remnants(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,
+             min_fraction: float = 0.05) -> List[Container]:
+    """The unused material of every used hide as new hides for the next job.
+
+    Remnant = hide outline minus every placed part grown by ``spacing`` (the
+    knife needs its gap there too); each connected piece of at least
+    ``min_fraction`` of the hide's area becomes a hide (id
+    ``<hide>_r<k>``) with the original base grade, the defects and zones that
+    reach into it (clipped), and the enclosed gaps between parts as defects."""
+    from shapely.geometry import Polygon as P
+    from shapely.ops import unary_union
+
+    from .checker import part_polygon, placed_polygon
+    from .containers import polygons_of
+    by_id = {p.id: part_polygon(p) for p in parts}
+    out: List[Container] = []
+    for c in layout.containers:
+        if c.kind != "hide":
+            continue
+        used = [placed_polygon(by_id[pl.part_id], pl.x, pl.y, pl.angle, pl.mirrored)
+                for pl in layout.placements if pl.container == c.id]
+        hide = P(c.outline)
+        taken = unary_union([g.buffer(spacing, 8) if spacing > 0 else g for g in used])
+        rest = hide.difference(taken) if used else hide
+        k = 0
+        for piece in sorted(polygons_of(rest), key=lambda g: -g.area):
+            if piece.area < min_fraction * hide.area:
+                continue
+            k += 1
+            shell = P(piece.exterior)
+            defects = [_ring(r.coords[:-1]) for r in piece.interiors]
+            for d in c.defects:
+                for g in polygons_of(P(d).intersection(shell)):
+                    defects.append(_ring(g.exterior.coords[:-1]))
+            zones = [(zg, _ring(g.exterior.coords[:-1])) for zg, z in c.zones
+                     for g in polygons_of(P(z).intersection(shell))]
+            out.append(Container(id=f"{c.id}_r{k}", kind="hide",
+                                 outline=_ring(shell.exterior.coords[:-1]), defects=defects,
+                                 zones=zones, base_grade=c.base_grade))
+    return out
+
+
+def write_hide_dxf(path: str, hides: Sequence[Container]) -> None:
+    """Hides as a DXF in the layer convention :func:`containers.read_hide_dxf`
+    reads (``HIDE_<base grade>``, ``DEFECT``, ``ZONE_<g>``), mm."""
+    import ezdxf
+
+    doc = ezdxf.new("R2010", setup=False)
+    doc.header["$INSUNITS"] = 4
+    msp = doc.modelspace()
+
+    def poly(ring, layer):
+        if layer not in doc.layers:
+            doc.layers.add(layer)
+        msp.add_lwpolyline([(x, y) for x, y in ring], close=True, dxfattribs={"layer": layer})
+
+    for h in hides:
+        poly(h.outline, f"HIDE_{h.base_grade}")
+        for d in h.defects:
+            poly(d, "DEFECT")
+        for g, z in h.zones:
+            poly(z, f"ZONE_{g}")
+    doc.saveas(path)
 
 
 def write_svg(path: str, parts: Sequence[Part], layout: Layout, title: str = "") -> None:

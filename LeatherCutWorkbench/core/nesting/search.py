@@ -22,22 +22,32 @@ every piece fits again.
 Each worker process runs its own search with its own random stream (derived
 from the seed and the worker index i) and start order; the best result wins, ties going to the lowest worker index.
 With ``max_evaluations`` each worker stops after exactly that many layouts,
-so the result only depends on the seed and the worker count; with only a
-time budget it also depends on the machine's speed.
+so the result only depends on the seed and the worker count (as long as the
+time budget does not end the search first); with only a time budget it also
+depends on the machine's speed.
+
+Time (see :class:`Budget`): the first fill is never abandoned but switches to
+convex-hull no-fit polygons once ``first_fill_until`` passes; every later
+evaluation is abandoned when ``t_end`` passes or Stop is pressed, so a worker
+ends at most one no-fit polygon computation after its deadline.  Every new
+best layout is handed to ``on_best`` (the parent process shows it live and
+keeps it when the user presses Stop).
 """
 
 from __future__ import annotations
 
+import math
 import random
 import time
 from dataclasses import dataclass
-from typing import List, Optional, Sequence, Tuple
+from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinSpec, Placer
 from .shapes import Variant
 
 Gene = Tuple[int, Optional[int]]          # (type index, forced variant or None)
 Placements = List[Tuple[int, int, int, int, int]]
+Cost = Tuple[float, int, int]
 
 
 @dataclass
@@ -52,9 +62,13 @@ class Problem:
     open_new: bool
     max_bins: Optional[int]
 
+    #: grid units per mm (the hide prune compares areas in grid units)
+    scale: float = 1.0
+
     def placer(self) -> Placer:
         return Placer(self.variants, self.type_variants, self.type_grade, self.bins,
-                      self.open_new, self.max_bins)
+                      self.open_new, self.max_bins,
+                      type_area=[a * self.scale * self.scale for a in self.type_area])
 
 
 def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements) -> Tuple[float, int, int]:
@@ -123,38 +137,110 @@ def _mutate(rng: random.Random, seq: List[Gene], problem: Problem) -> Tuple[List
     return new, n
 
 
-def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
-               time_budget: float, max_evaluations: Optional[int],
-               history: int = 40, tick=None) -> Tuple[Tuple[float, int, int], List[Gene], Placements, int]:
-    """One worker's search; returns (cost, order, placements, evaluations)."""
-    deadline = time.monotonic() + time_budget
-    placer = problem.placer()
-    rng = random.Random(seed * 1000003 + worker)
-    best = None
-    for k, order in enumerate(start_orders(problem, copies)):
-        if k and (time.monotonic() > deadline):
-            break
-        tr = placer.place(order)
-        c = cost_of(problem, order, tr.placements)
-        if best is None or c < best[0]:
-            best = (c, order, tr)
-    evals = 4
-    cur_cost, cur_seq, cur_pl = best
-    if worker % 2 == 1 and len(copies) > 1:     # diversify the second start
-        cur_seq = list(cur_seq)
-        rng.shuffle(cur_seq)
-        cur_pl = placer.place(cur_seq)
-        cur_cost = cost_of(problem, cur_seq, cur_pl.placements)
-    hist = [cur_cost] * history
-    step = 0
-    while True:
-        if max_evaluations is not None and evals >= max_evaluations:
-            break
-        if time.monotonic() > deadline:
-            break
-        if tick is not None and evals % 10 == 0 and tick(best[0]) is False:
+@dataclass
+class Budget:
+    """What one worker may spend and whom it tells (times: ``time.monotonic()``).
+
+    * ``t_end`` -- the search ends; an evaluation still running is abandoned;
+    * ``first_fill_until`` -- the first fill (never abandoned) computes exact
+      no-fit polygons only until then, coarse (convex-hull) ones afterwards,
+      so a first valid layout exists early even on hundreds of parts;
+    * ``max_evaluations`` -- stop after this many layouts (None: no limit);
+    * ``stop`` -- returns True when the user pressed Stop (keep the best);
+    * ``on_best(cost, order, placements)`` -- called on every new best layout;
+    * ``tick(best_cost)`` -- called every few evaluations; False = cancel;
+    * ``hard_stop`` -- the first fill goes on with bounding boxes only;
+    * ``give_up_at`` -- even the first fill ends then (copies left unplaced)."""
+
+    t_end: float
+    first_fill_until: float = math.inf
+    max_evaluations: Optional[int] = None
+    stop: Optional[Callable[[], bool]] = None
+    on_best: Optional[Callable[[Cost, List[Gene], Placements], None]] = None
+    tick: Optional[Callable[[Cost], bool]] = None
+    hard_stop: float = math.inf
+    give_up_at: float = math.inf
+
+    def done(self, evals: int) -> bool:
+        if self.max_evaluations is not None and evals >= self.max_evaluations:
+            return True
+        if self.stop is not None and self.stop():
+            return True
+        return time.monotonic() > self.t_end
+
+    def check_cancel(self, evals: int, best_cost: Cost) -> None:
+        if self.tick is not None and evals % 10 == 0 and self.tick(best_cost) is False:
             from ..errors import CancelledError
             raise CancelledError("nesting cancelled")
+
+    def improved(self, cost: Cost, order: List[Gene], placements: Placements) -> None:
+        if self.on_best is not None:
+            self.on_best(cost, list(order), list(placements))
+
+
+def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker: int,
+                 budget: Budget):
+    """The worker's first layout (its own start order, never abandoned), then
+    the other start orders while they are cheap; returns (cost, order, trace, evals)."""
+    starts = start_orders(problem, copies)
+    k = worker % len(starts)
+    starts = starts[k:] + starts[:k]
+    t0 = time.monotonic()
+    placer.clock.stop_at = budget.t_end
+    placer.clock.hard_stop = budget.hard_stop
+    placer.clock.give_up_at = budget.give_up_at
+    placer.clock.stop = budget.stop
+    placer.clock.exact_until = budget.first_fill_until
+    # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
+    tr = placer.place(starts[0], abortable=False, variant_cap=4 if worker == 0 else None)
+    # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
+    # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
+    # evaluations; the other workers search exactly
+    if worker != 0 or placer.nfps.mean_exact_s() < 0.005:
+        placer.clock.exact_until = math.inf
+    best = (cost_of(problem, starts[0], tr.placements), starts[0], tr)
+    budget.improved(best[0], best[1], tr.placements)
+    evals = 1
+    cheap = (time.monotonic() - t0) < 0.25 * max(budget.t_end - t0, 0.0)
+    for order in starts[1:]:
+        if not cheap or budget.done(evals):
+            break
+        tr = placer.place(order)
+        evals += 1
+        if tr is None:
+            break
+        c = cost_of(problem, order, tr.placements)
+        if c < best[0]:
+            best = (c, order, tr)
+            budget.improved(c, order, tr.placements)
+    return best, evals
+
+
+def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
+               budget: Budget, history: int = 40) -> Tuple[Cost, List[Gene], Placements, int]:
+    """One worker's search; returns (cost, order, placements, evaluations).
+
+    Worker 0 lets a copy without a forced orientation try at most four of a
+    freely turning part's orientations (its evaluations are about three
+    times cheaper; orientation moves still force any of them), the other
+    workers try all."""
+    placer = problem.placer()
+    placer.variant_cap = 4 if worker == 0 else None
+    rng = random.Random(seed * 1000003 + worker)
+    best, evals = _first_fills(problem, placer, copies, worker, budget)
+    cur_cost, cur_seq, cur_pl = best
+    if worker % 2 == 1 and len(copies) > 1 and not budget.done(evals):
+        seq = list(cur_seq)                   # diversify the second worker's start
+        rng.shuffle(seq)
+        tr = placer.place(seq)
+        evals += 1
+        if tr is not None:
+            cur_seq, cur_pl = seq, tr
+            cur_cost = cost_of(problem, cur_seq, cur_pl.placements)
+    hist = [cur_cost] * history
+    step = 0
+    while len(copies) > 1 and not budget.done(evals):
+        budget.check_cancel(evals, best[0])
         new_seq, first = _mutate(rng, cur_seq, problem)
         slot = step % history
         h = hist[slot]
@@ -162,20 +248,20 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         evals += 1
         new_pl = placer.place(new_seq, cur_pl, first,
                               give_up=(max(cur_cost[0], h[0]), problem.type_area))
-        if new_pl is not None:                # None: left out more than could be accepted
+        if new_pl is not None:                # None: gave up early or out of time
             c = cost_of(problem, new_seq, new_pl.placements)
             if c <= cur_cost or c <= h:
                 cur_cost, cur_seq, cur_pl = c, new_seq, new_pl
                 if c < best[0]:
                     best = (c, new_seq, new_pl)
+                    budget.improved(c, new_seq, new_pl.placements)
         if cur_cost < h:
             hist[slot] = cur_cost
     return best[0], best[1], best[2].placements, evals
 
 
 def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int,
-                     time_budget: float, max_evaluations: Optional[int],
-                     history: int = 30, tick=None):
+                     budget: Budget, history: int = 30):
     """Strip search by shrinking: cut the strip to a length a little shorter than
     the best layout so far and search the order until everything fits again.
 
@@ -187,48 +273,31 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
     smallest step fails, the best order is kicked by a few random changes and
     the cycle starts again (iterated local search)."""
     from .blf import BinSpec as _Bin
-    deadline = time.monotonic() + time_budget
     rng = random.Random(seed * 1000003 + worker)
     open_placer = problem.placer()
     nfps = open_placer.nfps
     x0, y0, _, y1 = problem.bins[0].rect
-    best = None
-    starts = start_orders(problem, copies)
-    if worker % 2 == 1:
-        starts = starts[1:] + starts[:1]
-    for k, order in enumerate(starts):
-        if k and time.monotonic() > deadline:
-            break
-        tr = open_placer.place(order)
-        c = cost_of(problem, order, tr.placements)
-        if best is None or c < best[0]:
-            best = (c, order, tr)
-    evals = len(starts)
+    best, evals = _first_fills(problem, open_placer, copies, worker, budget)
     best_len = best[0][2]
     seq = list(best[1])
     step_frac = 0.02
     min_frac = 0.0005
 
-    def stop() -> bool:
-        if max_evaluations is not None and evals >= max_evaluations:
-            return True
-        return time.monotonic() > deadline
-
-    while not stop() and len(copies) > 1:
+    while len(copies) > 1 and not budget.done(evals):
         target = x0 + int((best_len - x0) * (1.0 - step_frac))
         placer = Placer(problem.variants, problem.type_variants, problem.type_grade,
                         [_Bin("sheet", (x0, y0, target, y1))], False, 1, nfps)
         cur_pl = placer.place(seq)
         evals += 1
+        if cur_pl is None:
+            break                             # out of time
         cur_cost = cost_of(problem, seq, cur_pl.placements)
         hist = [cur_cost] * history
         stall = 0
         limit = max(60, 3 * len(copies))
         step = 0
-        while cur_cost[0] > 0 and stall < limit and not stop():
-            if tick is not None and evals % 10 == 0 and tick(best[0]) is False:
-                from ..errors import CancelledError
-                raise CancelledError("nesting cancelled")
+        while cur_cost[0] > 0 and stall < limit and not budget.done(evals):
+            budget.check_cancel(evals, best[0])
             left_out = [p[0] for p in cur_pl.placements if p[1] < 0]
             if left_out and rng.random() < 0.3:
                 # move a piece that did not fit to an earlier place in the order
@@ -246,7 +315,7 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
             evals += 1
             new_pl = placer.place(new_seq, cur_pl, first,
                                   give_up=(max(cur_cost[0], h[0]), problem.type_area))
-            if new_pl is not None:            # None: left out more than could be accepted
+            if new_pl is not None:            # None: gave up early or out of time
                 c = cost_of(problem, new_seq, new_pl.placements)
                 if c < cur_cost:
                     stall = 0
@@ -257,6 +326,7 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
         if cur_cost[0] == 0:
             best = (cur_cost, list(seq), cur_pl)
             best_len = cur_cost[2]
+            budget.improved(cur_cost, seq, cur_pl.placements)
             step_frac = min(0.02, step_frac * 1.5)
         else:
             seq = list(best[1])
@@ -270,13 +340,32 @@ def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int
     return best[0], best[1], best[2].placements, evals
 
 
-def search(problem: Problem, copies: List[int], seed: int, worker: int, time_budget: float,
-           max_evaluations: Optional[int], tick=None):
+def search(problem: Problem, copies: List[int], seed: int, worker: int, budget: Budget):
     """The right search for the container kind (strip: shrinking; else order search)."""
     fn = run_strip_search if problem.bins[0].kind == "strip" else run_search
-    return fn(problem, copies, seed, worker, time_budget, max_evaluations, tick=tick)
+    return fn(problem, copies, seed, worker, budget)
 
 
-def _worker_entry(args):
-    problem, copies, seed, worker, budget, max_eval = args
-    return search(problem, copies, seed, worker, budget, max_eval)
+def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_end: float,
+                first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
+                hard_stop: float = math.inf, give_up_at: float = math.inf) -> None:
+    """Entry point of a worker process: every new best goes to ``queue`` as
+    ("best", worker, cost, order, placements), every 10 evaluations
+    ("evals", worker, count); the end as ("done", worker, evaluations) or
+    ("error", worker, message).  ``stop_event`` set = stop now."""
+    def on_best(cost, order, placements):
+        queue.put(("best", worker, cost, order, placements))
+
+    ticks = [0]
+
+    def tick(_cost) -> bool:              # called every 10 evaluations
+        ticks[0] += 10
+        queue.put(("evals", worker, ticks[0]))
+        return True
+    budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
+                    hard_stop=hard_stop, give_up_at=give_up_at)
+    try:
+        _, _, _, evals = search(problem, copies, seed, worker, budget)
+        queue.put(("done", worker, evals))
+    except Exception as exc:  # reported to the parent, which raises it there
+        queue.put(("error", worker, f"{type(exc).__name__}: {exc}"))

@@ -11,7 +11,9 @@ origin -- in the engine's integer grid (pyclipper works on integers):
   clipped vertices can never create a real overlap),
 * ``holes``: the holes shrunk by the same amount (room for part-in-part),
 * ``core``: the true outline grown only by the chord error and one unit (for
-  hide regions, whose margins are applied to the region instead).
+  hide regions, whose margins are applied to the region instead),
+* ``hull`` / ``core_hull``: the convex hulls of ``outer`` / ``core`` (the
+  coarse geometry the engine falls back to when time runs short).
 
 Orientations that give the same shape up to a translation (a rectangle turned
 180 degrees, a disc turned any angle) are kept once.
@@ -66,6 +68,29 @@ class Variant:
     holes: List[IntPath]
     bbox: tuple  # (xmin, ymin, xmax, ymax) of ``outer``, grid units
     core: IntPath = field(default_factory=list)   # true outline grown by one grid unit
+    hull: IntPath = field(default_factory=list)   # convex hull of ``outer`` (CCW)
+    core_hull: IntPath = field(default_factory=list)   # convex hull of ``core`` (CCW)
+
+
+def convex_hull(ring: IntPath) -> IntPath:
+    """Convex hull of an integer ring, counter-clockwise, collinear points
+    dropped (exact integers; Andrew's monotone chain -- a plain loop is
+    several times faster than scipy on the few dozen vertices of a part)."""
+    pts = sorted({(int(x), int(y)) for x, y in ring})
+    if len(pts) < 3:
+        return [list(p) for p in pts]
+
+    def half(points):
+        out: list = []
+        for p in points:
+            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (p[1] - out[-2][1])
+                                     - (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])) <= 0:
+                out.pop()
+            out.append(p)
+        return out
+
+    lower, upper = half(pts), half(pts[::-1])
+    return [list(p) for p in lower[:-1] + upper[:-1]]
 
 
 def _area(a: np.ndarray) -> float:
@@ -156,6 +181,9 @@ def offset_paths(paths: List[IntPath], delta: float, arc_tol: float) -> List[Int
 def _same_shape(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
     """Are two rings the same shape up to translation (within ``tol`` mm)?"""
     from shapely.geometry import Polygon
+    da, db = a.max(axis=0) - a.min(axis=0), b.max(axis=0) - b.min(axis=0)
+    if np.abs(da - db).max() > 4.0 * tol + 1e-9 * float(da.max()):
+        return False                  # different bounding boxes: cheaply not the same
     pa = Polygon(a - a.min(axis=0))
     pb = Polygon(b - b.min(axis=0))
     if abs(pa.area - pb.area) > tol * pa.length + 1e-9 * pa.area:
@@ -213,5 +241,6 @@ def make_variants(types: Sequence[PieceType], scale: float, half_gap: float,
                 xs = [p[0] for p in grown]
                 ys = [p[1] for p in grown]
                 out.append(Variant(len(out), ti, ang, m, grown, holes,
-                                   (min(xs), min(ys), max(xs), max(ys)), core))
+                                   (min(xs), min(ys), max(xs), max(ys)), core,
+                                   convex_hull(grown), convex_hull(core)))
     return out

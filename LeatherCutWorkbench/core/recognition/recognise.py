@@ -22,6 +22,7 @@ import gc
 from collections import defaultdict
 from typing import Dict, List, Optional, Set
 
+from ..dxfimport.grades import assign_grades, grade_of_texts
 from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, Part,
                      Recognition)
 from ..progress import ProgressFn, report
@@ -104,6 +105,7 @@ def _recognise(drawing: Drawing, options: RecogniseOptions,
     rec.flags.sort(key=lambda f: _num(f.id))
     _apply_part_decisions(rec, options)
     _unknown_fixes(rec, options)
+    rec.findings.extend(assign_grades(rec.parts, drawing.texts))
     return rec
 
 
@@ -401,6 +403,7 @@ def _piece_fields(part: Part, drawing: Drawing, grp: Group) -> None:
     part.name = info.name + (f" size {info.size}" if getattr(info, "size", "") else "")
     part.quantity = max(1, int(getattr(info, "quantity", 1) or 1))
     part.size = getattr(info, "size", "") or ""
+    part.grade = grade_of_texts(drawing.texts[i].text for i in info.texts) or 0
     if getattr(info, "grain_angle", None) is not None or grp.has_grain:
         part.rotations = [0.0, 180.0]
 
