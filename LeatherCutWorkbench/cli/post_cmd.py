@@ -14,6 +14,7 @@ from typing import Any
 
 from . import Report, add_common_options
 from ..core.errors import InputError
+from .outputs import check_output_path, require_cut_items
 from .stages import add_stage_options, job_options, non_negative
 
 DEFAULT_MACHINE = "grblhal_tangential"
@@ -66,7 +67,9 @@ def plan_drawing(args: argparse.Namespace, profile) -> Any:
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
     opts = job_options(args, before="end", machine=profile)
-    return run_job(args.file, opts)
+    result = run_job(args.file, opts)
+    require_cut_items(result, args.file)
+    return result
 
 
 def render(plan, profile, fmt: str, options, marks=()) -> str:
@@ -92,6 +95,7 @@ def run(args: argparse.Namespace) -> Report:
     if fmt == "hpgl" and profile.dialect != "hpgl":
         raise InputError(f"profile {profile.name} is for {profile.dialect}, not HP-GL",
                          source=args.file)
+    check_output_path(args.post_output)
     result = plan_drawing(args, profile)
     marks = [m for part in result.parts_to_cut for m in part.marks]
     text = render(result.plan, profile, fmt, options_from_args(args), marks)

@@ -17,6 +17,7 @@ from . import Report, add_common_options, post_cmd
 from ..core.errors import InputError
 from ..core.job import run_job
 from ..core.job_report import job_report
+from .outputs import check_output_path, require_cut_items
 from .stages import add_stage_options, job_options, progress_bar
 
 
@@ -45,8 +46,11 @@ def run(args: argparse.Namespace) -> Report:
         raise InputError(f"profile {profile.name} is for {profile.dialect}, but run writes G-code "
                          f"(job.nc); use 'leathercut post --format {profile.dialect}'",
                          source=args.post_machine)
+    for name in ("job.nc", "preview.svg", "report.json"):
+        check_output_path(os.path.join(args.outdir, name))
     result = run_job(args.file, job_options(args, before="end", machine=profile),
                      None if args.json else progress_bar())
+    require_cut_items(result, args.file)
     text_nc = gcode.export(result.plan, profile)
     outdir = args.outdir
     try:

@@ -149,11 +149,16 @@ def arc(e: Any, t: Affine, src: EdgeSource, out: Collector) -> None:
 
 def ellipse(e: Any, t: Affine, src: EdgeSource, out: Collector) -> None:
     dxf = e.dxf
+    major, ratio = dxf.major_axis, dxf.ratio
+    if not (major[0] or major[1] or major[2]) or not 0.0 < ratio <= 1.0:
+        out.skip(e, "warning", f"ellipse with major axis {tuple(major)} and ratio {ratio} is "
+                 f"degenerate (the ratio must lie in (0, 1])", src.block)
+        return
     p1 = dxf.start_param
     span = (dxf.end_param - p1) % TWO_PI
     if span <= 1e-12 or abs(span - TWO_PI) <= 1e-12:
         span = TWO_PI
-    edge = conic_edge(t, dxf.center, dxf.major_axis, e.minor_axis, p1, span, src)
+    edge = conic_edge(t, dxf.center, major, e.minor_axis, p1, span, src)
     if edge is None:
         out.skip(e, "warning", "ellipse is degenerate or seen edge-on in the XY plane", src.block)
     else:
