@@ -10,6 +10,7 @@
   builds each base drawing with ezdxf using a distinct sentinel number per
   value, then replaces one sentinel's value line at a time, so the group code
   it hits is known;
+* ``binary``: binary DXF files with nan / inf doubles;
 * ``blocks``: deep and wide nesting, huge MINSERT grids, self-reference;
 * ``spline``: bad knots and weights; ``ellipse``: zero and NaN axes;
 * ``text``: truncated files, binary garbage, wrong group codes, missing y
@@ -182,6 +183,26 @@ def _nonfinite_cases(folder: str) -> List[Case]:
                 verbs = ("inspect", later) if "n" in value else ALL_VERBS
                 cases.append(Case("nonfinite", f"{kind} group {code} = {value}", path,
                                   verbs=verbs, expect=2 if "n" in value else None))
+    return cases
+
+
+def _binary_cases(folder: str) -> List[Case]:
+    """Binary DXF with non-finite doubles (no text to scan: the converted
+    geometry is checked)."""
+    cases = []
+    nan, inf = float("nan"), float("inf")
+    for label, add in (("LINE start nan", lambda m: m.add_line((nan, 0), (10, 10))),
+                       ("CIRCLE radius inf", lambda m: m.add_circle((5, 5), inf)),
+                       ("ARC centre -inf", lambda m: m.add_arc((-inf, 5), 3, 0, 90)),
+                       ("POINT nan", lambda m: m.add_point((nan, nan))),
+                       ("LWPOLYLINE vertex inf", lambda m: m.add_lwpolyline(
+                           [(0, 0), (inf, 0), (5, 5)]))):
+        doc = ezdxf.new("R2000")
+        _square(doc.modelspace(), 200, 200)
+        add(doc.modelspace())
+        path = os.path.join(folder, "bin_" + label.replace(" ", "_") + ".dxf")
+        doc.saveas(path, fmt="bin")
+        cases.append(Case("binary", label, path, expect=2))
     return cases
 
 
@@ -431,6 +452,7 @@ def generate(folder: str, seed: int = 16, mutants: int = 40) -> List[Case]:
     os.makedirs(folder, exist_ok=True)
     rng = random.Random(seed)
     cases = _nonfinite_cases(folder)
+    cases += _binary_cases(folder)
     cases += _block_cases(folder)
     cases += _spline_cases(folder)
     text_cases = _text_cases(folder, rng)

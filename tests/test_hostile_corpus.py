@@ -54,7 +54,7 @@ def test_corpus_is_large_and_varied(corpus):
     _, cases, _, _ = corpus
     families = collections.Counter(c.family for c in cases)
     assert len(cases) >= 300
-    assert set(families) >= {"nonfinite", "blocks", "spline", "ellipse", "text", "nodes",
+    assert set(families) >= {"nonfinite", "binary", "blocks", "spline", "ellipse", "text", "nodes",
                              "profiles", "mutants"}
     kinds = {c.label.split(" group ")[0] for c in cases if c.family == "nonfinite"}
     assert kinds >= {"LINE", "CIRCLE", "ARC", "ELLIPSE", "LWPOLYLINE", "POLYLINE", "SPLINE",

@@ -163,3 +163,13 @@ def test_motion_trace_follows_relative_moves_and_arcs():
         safety.check_output(["G0 X100 Y10", "G3 X140 Y10 I20 J0 F1000"], prof)
     safety.check_output(["G0 X100 Y10", "G2 X140 Y10 I20 J0 F1000"], prof)   # bulges up
     safety.check_output(["G0 X100 Y30", "G0 X0 Y0"], prof)    # machine zero: the return home
+
+
+def test_a_ready_program_to_send_gets_the_same_line_form_check():
+    """``send FILE.nc`` checks foreign programs with check_program: a control
+    character or a second line hidden in one line is refused there too."""
+    prof = load_profile("grblhal_tangential")
+    safety.check_program(["G21 G90", "G0 X10 Y10"], prof, "ok.nc")
+    for bad in ("G0 X10 Y10\x07", "G0 X10\rG0 X-99"):
+        with pytest.raises(SafetyError):
+            safety.check_program(["G21 G90", bad], prof, "bad.nc")

@@ -48,10 +48,12 @@ _NODE_KINDS = ((stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISCHR, "a charact
                (stat.S_ISBLK, "a block device"), (stat.S_ISSOCK, "a socket"),
                (stat.S_ISDIR, "a directory"))
 
-#: A value line that Python's float() reads as nan or inf.
-_NONFINITE = re.compile(rb"\n[ \t]*([+-]?(?:nan|inf(?:inity)?))[ \t]*\r?(?=\n|$)", re.I)
-#: A value line with a 3-digit exponent (may overflow to inf).
-_BIG_EXP = re.compile(rb"\n[ \t]*([+-]?(?:\d+\.?\d*|\.\d+)[eE]\+?\d{3,})[ \t]*\r?(?=\n|$)")
+#: Where a value that reads as inf may start (a 3-digit exponent, searched in the
+#: lower-cased data; ``nan`` / ``inf`` are found with bytes.find), after which
+#: the whole value line is checked.
+_BIG_EXPONENT = re.compile(rb"e\+?\d{3}")
+_NONFINITE_VALUE = re.compile(rb"[+-]?(?:nan|inf(?:inity)?|(?:\d+\.?\d*|\.\d+)e\+?\d{3,})",
+                              re.I)
 _ENTITY_START = re.compile(rb"(?:^|\n)[ \t]*0[ \t]*\r?\n[ \t]*([A-Za-z_][A-Za-z_0-9]*)[ \t]*\r?\n")
 _HANDLE = re.compile(rb"\n[ \t]*5[ \t]*\r?\n[ \t]*([0-9A-Fa-f]+)[ \t]*\r?\n")
 
@@ -99,15 +101,39 @@ def scan_nonfinite(path: str, data: bytes) -> None:
     """InputError at the first value line of an ASCII DXF that reads as nan or
     inf (``nan``, ``inf``, ``-Infinity``, ``1e999``), naming line, group code
     and entity."""
-    for rx in (_NONFINITE, _BIG_EXP):
-        for m in rx.finditer(data):
-            value = m.group(1).decode("latin-1")
-            if rx is _BIG_EXP and math.isfinite(float(value)):
-                continue
-            pos = m.start(1)
-            line = data.count(b"\n", 0, pos) + 1
-            raise InputError(f"{_entity_at(data, pos)}: group code {_group_code(data, m.start())} "
-                             f"at line {line} is {value!r}, not a finite number", path)
+    for pos in _hints(data.lower()):
+        start = data.rfind(b"\n", 0, pos) + 1
+        end = data.find(b"\n", pos)
+        raw = data[start:end if end >= 0 else len(data)].strip()
+        if not _NONFINITE_VALUE.fullmatch(raw) or math.isfinite(float(raw)):
+            continue
+        code = _group_code(data, start - 1)
+        if not _is_float_code(code):
+            continue                # a text, name or handle ('NaN' layer, handle 1E309)
+        line = data.count(b"\n", 0, start) + 1
+        raise InputError(f"{_entity_at(data, start)}: group code {code} at line {line} is "
+                         f"{raw.decode('latin-1')!r}, not a finite number", path)
+
+
+def _hints(low: bytes) -> Iterable[int]:
+    """Positions in the lower-cased file where a nan / inf value may be."""
+    for needle in (b"nan", b"inf"):
+        pos = low.find(needle)
+        while pos >= 0:
+            yield pos
+            pos = low.find(needle, pos + 1)
+    for m in _BIG_EXPONENT.finditer(low):
+        yield m.start()
+
+
+def _is_float_code(code: str) -> bool:
+    """True for group codes whose value is a floating point number (DXF reference)."""
+    try:
+        c = int(code)
+    except ValueError:
+        return False
+    return (10 <= c <= 59 or 110 <= c <= 149 or 210 <= c <= 239 or 460 <= c <= 469
+            or 1010 <= c <= 1059)
 
 
 def describe_source(src: Any) -> str:
