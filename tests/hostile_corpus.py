@@ -152,9 +152,12 @@ def _value_lines(text: str, sentinels: set) -> List[Tuple[int, str]]:
     lines = text.split("\n")
     out = []
     frac = re.compile(r"^-?\d+\.\d+$")
+    in_geometry = False          # BLOCKS and ENTITIES only (header values may collide)
     for i in range(1, len(lines), 2):
         v = lines[i].strip()
-        if frac.match(v) and float(v) in sentinels:
+        if lines[i - 1].strip() == "2" and i >= 3 and lines[i - 2].strip() == "SECTION":
+            in_geometry = v in ("BLOCKS", "ENTITIES")
+        if in_geometry and frac.match(v) and float(v) in sentinels:
             out.append((i, lines[i - 1].strip()))
     return out
 
@@ -334,6 +337,10 @@ def _text_cases(folder: str, rng: random.Random) -> List[Case]:
     for code in (99, -5, 2 ** 40):
         put(f"insunits_{code}.dxf", f"$INSUNITS {code}",
             _r12(square, header=f"9\n$INSUNITS\n70\n{code}\n"))
+    put("header_nan.dxf", "header variable $DIMSCALE = nan",
+        _r12(square, header="9\n$DIMSCALE\n40\nnan\n"), expect=2)
+    put("layer_nan.dxf", "layer named NaN, handle 1E309 (not numbers)",
+        _r12(square.replace("8\n0\n", "5\n1E309\n8\nNaN\n", 1)), expect=0)
     put("only_text.dxf", "nothing cuttable (only a TEXT)",
         _r12("0\nTEXT\n8\n0\n10\n0\n20\n0\n40\n2\n1\nhello\n"))
     put("only_point.dxf", "nothing cuttable (only a POINT)", _r12("0\nPOINT\n8\n0\n10\n5\n20\n5\n"))

@@ -58,6 +58,17 @@ def test_nonfinite_coordinate_is_refused_with_line_and_entity(tmp_path, capsys, 
     assert "LINE #2F" in err and "group code 11" in err and path in err
 
 
+def test_names_and_handles_that_look_like_numbers_are_not_refused(tmp_path):
+    text = _r12(_square().replace("5\n40\n8\n0\n", "5\n1E309\n8\nNaN\n", 1))
+    d = read_drawing(_write(tmp_path, "names.dxf", text))
+    assert "NaN" in {e.src.layer for e in d.edges}
+
+
+def test_nonfinite_header_variable_is_named(tmp_path, capsys):
+    path = _write(tmp_path, "h.dxf", _r12(_square(), header="9\n$DIMSCALE\n40\nnan\n"))
+    assert "header variable $DIMSCALE" in _refused(capsys, "inspect", path)
+
+
 def test_nonfinite_in_binary_dxf_is_refused_naming_the_entity(tmp_path, capsys):
     doc = ezdxf.new("R2000")
     doc.modelspace().add_line((0, 0), (100, 0))

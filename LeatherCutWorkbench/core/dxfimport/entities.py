@@ -14,7 +14,9 @@ from typing import Any, Callable, Dict, List, Tuple
 
 from ezdxf.math import OCS
 
+from ..errors import InputError
 from ..model import EdgeSource, Finding, LineEdge, Mark, SplineEdge, TextNote
+from .limits import MAX_COORDINATE_MM
 from .transform import TWO_PI, Affine, apply, bulge_arc, conic_edge, length_scale
 
 #: Findings quoted per (entity type, reason); the rest are summarised.
@@ -120,6 +122,9 @@ def _circle(e: Any, t: Affine, src: EdgeSource, out: Collector, t_start: float, 
     if not r > 0.0:
         out.skip(e, "warning", f"radius {r} is not positive", src.block)
         return
+    if r > MAX_COORDINATE_MM:      # its square overflows: it would look edge-on
+        raise InputError(f"{e.dxftype()} #{e.dxf.get('handle') or '?'}: radius {r:g} is beyond "
+                         f"the coordinate limit of {MAX_COORDINATE_MM:.0e} mm", out.path)
     ex = _extrusion(e)
     if _is_z(ex):
         center, u, v = dxf.center, (r, 0.0, 0.0), (0.0, r, 0.0)

@@ -55,6 +55,7 @@ _BIG_EXPONENT = re.compile(rb"e\+?\d{3}")
 _NONFINITE_VALUE = re.compile(rb"[+-]?(?:nan|inf(?:inity)?|(?:\d+\.?\d*|\.\d+)e\+?\d{3,})",
                               re.I)
 _ENTITY_START = re.compile(rb"(?:^|\n)[ \t]*0[ \t]*\r?\n[ \t]*([A-Za-z_][A-Za-z_0-9]*)[ \t]*\r?\n")
+_HEADER_VAR = re.compile(rb"\n[ \t]*9[ \t]*\r?\n[ \t]*(\$[A-Za-z_0-9]+)")
 _HANDLE = re.compile(rb"\n[ \t]*5[ \t]*\r?\n[ \t]*([0-9A-Fa-f]+)[ \t]*\r?\n")
 
 
@@ -86,6 +87,9 @@ def _entity_at(data: bytes, pos: int) -> str:
     if not starts:
         return "entity"
     m = starts[-1]
+    var = _HEADER_VAR.findall(data, m.end() - 1, pos)
+    if var:                          # a header variable, e.g. $DIMASZ
+        return f"header variable {var[-1].decode('latin-1')}"
     kind = m.group(1).decode("latin-1")
     h = _HANDLE.search(data, m.end() - 1, pos)
     return f"{kind} #{h.group(1).decode()}" if h else kind
