@@ -274,3 +274,15 @@ def test_entry_candidates_stay_bounded_on_a_huge_contour():
     segs = [LineSeg((0.0, 0.0), (1e17, 0.0)), LineSeg((1e17, 0.0), (0.0, 0.0))]
     pos = entry_positions(segs, 20.0)     # asked numpy for 284 PiB before
     assert 2 <= len(pos) <= 64
+
+
+@pytest.mark.parametrize("option,value", [("--chord-tol", "1e-12"), ("--gap-tol", "nan"),
+                                          ("--join-tol", "inf")])
+def test_recognition_tolerances_are_bounded(tmp_path, capsys, option, value):
+    path = _write(tmp_path, "sq.dxf", _r12(_square()))
+    try:                        # refused by the option's type (argparse) or by validate()
+        code = main(["recognise", path, option, value])
+    except SystemExit as exc:
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code == 2 and option in err and "Traceback" not in err
