@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Dict, FrozenSet, List, Sequence, Tuple
+from typing import Dict, FrozenSet, Iterable, Iterator, List, Sequence, Tuple
 
 from ..core.errors import SafetyError
 from .gcode_reader import GcodeError, parse_words, strip_line
@@ -110,40 +110,56 @@ def _arc_extremes(m: Move) -> List[tuple]:
 
 def check_lines(lines: Sequence[str], profile: MachineProfile) -> None:
     """Every word of every line must be known to the dialect and the machine;
-    feeds within the profile; lines no longer than ``max_line_length``."""
+    feeds within the profile; lines no longer than ``max_line_length``; each
+    line exactly one line of printable ASCII with closed comments."""
+    for _ in _checked(lines, profile):
+        pass
+
+
+def _checked(lines: Sequence[str], profile: MachineProfile
+             ) -> Iterator[Tuple[int, str, List[Tuple[str, float]]]]:
+    """(line number, line, words) of every line after the checks of
+    :func:`check_lines`; SafetyError at the first bad line."""
     words = DIALECT_WORDS[profile.dialect]
     axes = set(profile.axes) & set(words["axes"])
+    g_codes, m_codes, letters = words["G"], words["M"], words["letters"]
+
+    def where(n: int, line: str) -> str:
+        return f"output line {n} {line.strip()!r}"
+
     for n, line in enumerate(lines, 1):
-        where = f"output line {n} {line.strip()!r}"
         if _BAD_LINE.search(line):
-            raise SafetyError(_bad_line_reason(line), source=where)
+            raise SafetyError(_bad_line_reason(line), source=where(n, line))
         block = strip_line(line)
         if not block:
+            yield n, line, []
             continue
         if len(block) > profile.max_line_length:
             raise SafetyError(f"{len(block)} characters, more than {profile.max_line_length} "
-                              f"{profile.dialect} accepts", source=where)
+                              f"{profile.dialect} accepts", source=where(n, line))
         try:
             parsed = parse_words(block, n)
         except GcodeError as exc:
-            raise SafetyError(f"not G-code: {exc.message}", source=where)
+            raise SafetyError(f"not G-code: {exc.message}", source=where(n, line))
         for letter, v in parsed:
-            if letter in ("G", "M"):
+            if letter == "G" or letter == "M":
                 code = round(v, 1) if letter == "G" else v
-                if code not in words[letter]:
+                if code not in (g_codes if letter == "G" else m_codes):
                     raise SafetyError(f"{letter}{v:g} is not understood by {profile.dialect}",
-                                      source=where)
+                                      source=where(n, line))
             elif letter in "XYZABCUVW":
                 if letter not in axes:
                     have = "".join(sorted(axes, key="XYZABCUVW".index))
                     raise SafetyError(f"word {letter} names an axis {profile.dialect} / "
-                                      f"{profile.name} does not have (axes {have})", source=where)
-            elif letter not in words["letters"]:
+                                      f"{profile.name} does not have (axes {have})",
+                                      source=where(n, line))
+            elif letter not in letters:
                 raise SafetyError(f"word {letter} is not understood by {profile.dialect}",
-                                  source=where)
+                                  source=where(n, line))
             if letter == "F" and not (0 < v <= profile.max_feed):
                 raise SafetyError(f"feed F{v:g} is outside 0..{profile.max_feed:g} mm/min",
-                                  source=where)
+                                  source=where(n, line))
+        yield n, line, parsed
 
 
 def check_program(lines: Sequence[str], profile: MachineProfile, name: str = "") -> None:
@@ -219,6 +235,12 @@ def check_motion(lines: Sequence[str], profile: MachineProfile, start=None) -> N
     coordinates (machine minus ``origin``).  Machine zero itself is always
     allowed (the return home).  Lines must already have passed
     :func:`check_lines`."""
+    _trace(((n, line, words(line)) for n, line in enumerate(lines, 1)), profile, start)
+
+
+def _trace(parsed: Iterable[Tuple[int, str, List[Tuple[str, float]]]],
+           profile: MachineProfile, start=None) -> None:
+    """The motion check of :func:`check_motion` over already parsed lines."""
     xmin, ymin, xmax, ymax = profile.table_limits()
     ox, oy = profile.origin
     tol = 10.0 ** -profile.decimals
@@ -230,8 +252,7 @@ def check_motion(lines: Sequence[str], profile: MachineProfile, start=None) -> N
             return True
         return (xmin - tol <= px - ox <= xmax + tol) and (ymin - tol <= py - oy <= ymax + tol)
 
-    for n, line in enumerate(lines, 1):
-        ws = words(line)
+    for n, line, ws in parsed:
         if not ws:
             continue
         gs = [round(v, 1) for letter, v in ws if letter == "G"]
@@ -277,5 +298,4 @@ def check_output(lines: Sequence[str], profile: MachineProfile) -> None:
     """The check every finished G-code program passes before it is returned,
     written or sent: words, line length and line form (:func:`check_lines`)
     and the traced motion (:func:`check_motion`)."""
-    check_lines(lines, profile)
-    check_motion(lines, profile)
+    _trace(_checked(lines, profile), profile)      # one parse per line for both
