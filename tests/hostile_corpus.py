@@ -395,6 +395,8 @@ HOSTILE_PROFILES: List[Tuple[str, Dict]] = [
     ("lift_angle NaN", {"lift_angle": float("nan")}),
     ("name with newline", {"name": "x\nG0 X-9999 Y-9999\nM30"}),
     ("name with parenthesis", {"name": "a) G0 X-9999 (b"}),
+    ("name with semicolon", {"name": "a; G0 X-9999"}),
+    ("name with spaces and dashes", {"name": "Cutter 2 - hall B"}),
     ("knife_up with newline", {"knife_up": ["G0 Z5\nG0 X-9999 Y-9999"]}),
     ("knife_down with CR", {"knife_down": ["G1 Z-1 F1000\rG0 X-9999"]}),
     ("header far rapid", {"header": ["G0 X-5000 Y-5000"]}),
@@ -413,8 +415,8 @@ HOSTILE_PROFILES: List[Tuple[str, Dict]] = [
     ("max_line_length 0", {"max_line_length": 0}),
 ]
 
-#: Hostile-looking profiles that are fine: the name is only ever a sanitised comment.
-HARMLESS_PROFILES = ("name with parenthesis",)
+#: Hostile-looking profiles that are fine.
+HARMLESS_PROFILES = ("name with spaces and dashes",)
 
 
 def _profile_cases(folder: str, drawing: str) -> List[Case]:

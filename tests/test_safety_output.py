@@ -37,6 +37,8 @@ def _square_plan(x0=100.0, y0=100.0, size=50.0):
     ("header", ["G21\x07"]),
     ("footer", ["M2\n"]),
     ("description", "two\nlines"),
+    ("name", "a) G0 X-9999 (b"),
+    ("name", "a; G0 X-9999"),
 ])
 def test_line_breaks_and_control_characters_are_refused_naming_the_field(tmp_path, field, value):
     with pytest.raises(InputError) as err:

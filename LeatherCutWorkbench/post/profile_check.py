@@ -9,7 +9,8 @@ an :class:`InputError` naming the profile file and the field:
 * ``z_up`` above ``z_down`` when a lift axis moves the knife;
 * text fields (``name``, templates, ``header``, ``footer``) without control
   characters or line breaks, printable ASCII only: one template entry is one
-  output line, it can never smuggle in a second one;
+  output line, it can never smuggle in a second one; ``name`` also without
+  ``(``, ``)``, ``;`` (it is written into comments);
 * G-code profiles: every expanded template, header and footer line passes the
   output safety check (:func:`.safety.check_lines`: words of the dialect, line
   length); header and footer motion stays inside the table, traced from
@@ -100,6 +101,9 @@ def check_profile(p: Any, source: str) -> None:
                 where = f" line {k + 1}" if isinstance(value, list) else ""
                 fail(f.name, f"{where.strip() + ' ' if where else ''}contains {bad}: one entry is "
                              f"exactly one output line of printable ASCII")
+    if any(ch in p.name for ch in "();"):
+        fail("name", f"{p.name!r} contains '(', ')' or ';': the name is written into G-code "
+                     f"comments, which these would end")
     if p.lift_axis and p.is_gcode and not p.z_up > p.z_down:
         fail("z_up", f"z_up {p.z_up:g} must lie above z_down {p.z_down:g} (mm on the lift axis "
                      f"{p.lift_axis})")
