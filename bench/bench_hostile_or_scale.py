@@ -48,13 +48,15 @@ def write_squares(path: str, n: int, lwpoly: bool, pitch: float = 10.0, size: fl
     side = int(n ** 0.5) + 1
     h = 0x100
     with open(path, "w") as out:
-        out.write("0\nSECTION\n2\nHEADER\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+        out.write("0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1015\n9\n$INSUNITS\n70\n4\n"
+                  "0\nENDSEC\n"
                   "0\nSECTION\n2\nENTITIES\n")
         for k in range(n):
             x0, y0 = (k // side) * pitch, (k % side) * pitch
             pts = [(x0, y0), (x0 + size, y0), (x0 + size, y0 + size), (x0, y0 + size)]
             if lwpoly:
-                out.write(f"0\nLWPOLYLINE\n5\n{h:X}\n8\nCUT\n90\n4\n70\n1\n")
+                out.write(f"0\nLWPOLYLINE\n5\n{h:X}\n100\nAcDbEntity\n8\nCUT\n"
+                          f"100\nAcDbPolyline\n90\n4\n70\n1\n")
                 out.write("".join(f"10\n{x}\n20\n{y}\n" for x, y in pts))
                 h += 1
                 continue
@@ -84,6 +86,8 @@ def main() -> int:
         for label, n, lw in ((f"{4 * args.lines_squares:,} LINEs", args.lines_squares, False),
                              (f"{args.lwpoly_squares:,} LWPOLYLINE squares",
                               args.lwpoly_squares, True)):
+            if n <= 0:
+                continue
             path = os.path.join(tmp, "drawing.dxf")
             write_squares(path, n, lw)
             mb = os.path.getsize(path) / 2 ** 20
