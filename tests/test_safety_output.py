@@ -153,18 +153,18 @@ def test_comment_strips_everything_that_could_end_it():
 def test_output_line_form_is_checked(line):
     prof = load_profile("grblhal_tangential")
     with pytest.raises(SafetyError):
-        safety.check_output(["G21 G90", line], prof)
+        safety.check_lines(["G21 G90", line], prof)
 
 
 def test_motion_trace_follows_relative_moves_and_arcs():
     prof = load_profile("grblhal_tangential")     # table 2500 x 1600
-    safety.check_output(["G90 G0 X100 Y100", "G91 G1 X100 F1000", "G90"], prof)
+    safety.check_lines(["G90 G0 X100 Y100", "G91 G1 X100 F1000", "G90"], prof)
     with pytest.raises(SafetyError):
-        safety.check_output(["G90 G0 X2400 Y100", "G91 G1 X200 F1000"], prof)
+        safety.check_lines(["G90 G0 X2400 Y100", "G91 G1 X200 F1000"], prof)
     with pytest.raises(SafetyError):     # half circle bulging below y = 0
-        safety.check_output(["G0 X100 Y10", "G3 X140 Y10 I20 J0 F1000"], prof)
-    safety.check_output(["G0 X100 Y10", "G2 X140 Y10 I20 J0 F1000"], prof)   # bulges up
-    safety.check_output(["G0 X100 Y30", "G0 X0 Y0"], prof)    # machine zero: the return home
+        safety.check_lines(["G0 X100 Y10", "G3 X140 Y10 I20 J0 F1000"], prof)
+    safety.check_lines(["G0 X100 Y10", "G2 X140 Y10 I20 J0 F1000"], prof)   # bulges up
+    safety.check_lines(["G0 X100 Y30", "G0 X0 Y0"], prof)    # machine zero: the return home
 
 
 def test_a_ready_program_to_send_gets_the_same_line_form_check():

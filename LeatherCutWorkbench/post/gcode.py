@@ -269,7 +269,7 @@ def build_program(plan: CutPlan, profile: MachineProfile,
             if not line.startswith("("):
                 n += 1
                 prog.lines[k] = f"N{n} {line}"
-    safety.check_output(prog.lines, profile)   # every line, whoever added it
+    safety.check_lines(prog.lines, profile)
     return prog
 
 

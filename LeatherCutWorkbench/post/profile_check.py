@@ -13,9 +13,9 @@ an :class:`InputError` naming the profile file and the field:
   ``(``, ``)``, ``;`` (it is written into comments);
 * G-code profiles: every expanded template, header and footer line passes the
   output safety check (:func:`.safety.check_lines`: words of the dialect, line
-  length); header and footer motion stays inside the table, traced from
-  machine zero (:func:`.safety.check_motion`); templates that run at every
-  item (knife, vacuum, press, tool) contain no X/Y words at all.
+  length, line form, motion traced from machine zero inside the table);
+  templates that run at every item (knife, vacuum, press, tool) contain no X/Y
+  words at all.
 """
 
 from __future__ import annotations
@@ -122,13 +122,11 @@ def _check_gcode_lines(p: Any, source: str) -> None:
             continue
         lines = expand(templates, p)
         try:
-            safety.check_lines(lines, p)
+            safety.check_lines(lines, p)       # words, line form, motion from machine zero
             if name in ITEM_TEMPLATES:
                 for k, line in enumerate(lines, 1):
                     if any(letter in "XY" for letter, _ in safety.words(line)):
                         raise SafetyError("X/Y motion is not allowed in a template that runs at "
                                           "every item", source=f"line {k} {line!r}")
-            else:
-                safety.check_motion(lines, p)
         except SafetyError as exc:
             raise InputError(f"field {name!r}: {exc}", source=source) from None

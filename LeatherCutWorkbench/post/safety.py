@@ -17,9 +17,9 @@ move (item, segment, coordinates) or the output line at the first violation:
    (:func:`check_motion`), stays inside the table: header, footer, templates
    and whatever a writer adds, not only the planned moves.
 
-:func:`check_output` (3 to 5) is the one check every G-code writer's finished
-lines pass (``gcode.build_program``); :func:`comment` turns user text (profile
-and part names) into a safe comment.  Writers call the checks before they
+:func:`check_lines` (3 to 5) is the one check every G-code writer's finished
+lines pass (``gcode.build_program`` and any writer assembling programs);
+:func:`comment` turns user text (profile and part names) into a safe comment.  Writers call the checks before they
 return text, so a refused job writes and sends nothing.
 """
 
@@ -109,17 +109,19 @@ def _arc_extremes(m: Move) -> List[tuple]:
 
 
 def check_lines(lines: Sequence[str], profile: MachineProfile) -> None:
-    """Every word of every line must be known to the dialect and the machine;
-    feeds within the profile; lines no longer than ``max_line_length``; each
-    line exactly one line of printable ASCII with closed comments."""
-    for _ in _checked(lines, profile):
-        pass
+    """The check every finished G-code program passes before it is returned,
+    written or sent, whoever added its lines: every word known to the dialect
+    and the machine; feeds within the profile; lines no longer than
+    ``max_line_length``; each line exactly one line of printable ASCII with
+    closed comments; and the motion, traced from machine zero
+    (:func:`check_motion`), inside the table.  One parse per line for all."""
+    _trace(_checked(lines, profile), profile)
 
 
 def _checked(lines: Sequence[str], profile: MachineProfile
              ) -> Iterator[Tuple[int, str, List[Tuple[str, float]]]]:
-    """(line number, line, words) of every line after the checks of
-    :func:`check_lines`; SafetyError at the first bad line."""
+    """(line number, line, words) of every line after the word and line-form
+    checks of :func:`check_lines`; SafetyError at the first bad line."""
     words = DIALECT_WORDS[profile.dialect]
     axes = set(profile.axes) & set(words["axes"])
     g_codes, m_codes, letters = words["G"], words["M"], words["letters"]
@@ -233,8 +235,8 @@ def check_motion(lines: Sequence[str], profile: MachineProfile, start=None) -> N
     G0-G3 with arcs by their full extent) from ``start`` (machine coordinates;
     default machine zero) and refuse any target outside the table in plan
     coordinates (machine minus ``origin``).  Machine zero itself is always
-    allowed (the return home).  Lines must already have passed
-    :func:`check_lines`."""
+    allowed (the return home).  Lines must be G-code (see :func:`check_lines`,
+    which runs this trace itself)."""
     _trace(((n, line, words(line)) for n, line in enumerate(lines, 1)), profile, start)
 
 
@@ -292,10 +294,3 @@ def _trace(parsed: Iterable[Tuple[int, str, List[Tuple[str, float]]]],
                     f"{xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name}",
                     source=f"output line {n} {line.strip()!r}")
         x, y = nx, ny
-
-
-def check_output(lines: Sequence[str], profile: MachineProfile) -> None:
-    """The check every finished G-code program passes before it is returned,
-    written or sent: words, line length and line form (:func:`check_lines`)
-    and the traced motion (:func:`check_motion`)."""
-    _trace(_checked(lines, profile), profile)      # one parse per line for both
