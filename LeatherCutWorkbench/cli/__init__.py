@@ -103,7 +103,8 @@ def _main(argv: Optional[List[str]]) -> int:
     try:
         report = func(args)
     except LeatherCutError as exc:
-        print(f"leathercut {args.verb}: error: {exc}", file=sys.stderr)
+        # one line, whatever the message quotes (file content, library errors)
+        print(f"leathercut {args.verb}: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print(f"leathercut {args.verb}: interrupted", file=sys.stderr)
@@ -111,7 +112,8 @@ def _main(argv: Optional[List[str]]) -> int:
     except Exception as exc:  # a bug: one line unless --debug
         if getattr(args, "debug", False):
             raise
-        print(f"leathercut {args.verb}: internal error: {type(exc).__name__}: {exc} "
+        print(f"leathercut {args.verb}: internal error: {type(exc).__name__}: "
+              f"{' '.join(str(exc).split())} "
               f"(re-run with --debug for the traceback)", file=sys.stderr)
         return 3
     print_report(report, getattr(args, "json", False))

@@ -14,6 +14,7 @@ from typing import Any
 
 from . import Report, add_common_options
 from ..core.errors import InputError
+from .outputs import check_output_path, require_cut_items
 from .stages import add_stage_options, job_options, non_negative
 
 DEFAULT_MACHINE = "grblhal_tangential"
@@ -70,7 +71,9 @@ def plan_drawing(args: argparse.Namespace, profile) -> Any:
     if not os.path.isfile(args.file):
         raise InputError("no such file", source=args.file)
     opts = job_options(args, before="end", machine=profile)
-    return run_job(args.file, opts)
+    result = run_job(args.file, opts)
+    require_cut_items(result, args.file)
+    return result
 
 
 def tool_overrides(args: argparse.Namespace):
@@ -93,6 +96,7 @@ def run(args: argparse.Namespace) -> Report:
     if fmt == "hpgl" and profile.dialect != "hpgl":
         raise InputError(f"profile {profile.name} is for {profile.dialect}, not HP-GL",
                          source=args.file)
+    check_output_path(args.post_output)
     tool_map(profile, tool_overrides(args))        # a bad --tool-map fails before planning
     result = plan_drawing(args, profile)
     tools = tool_export.job_for(result.plan, result.parts_to_cut, profile, tool_overrides(args))

@@ -17,6 +17,7 @@ from . import Report, add_common_options, post_cmd
 from ..core.errors import InputError
 from ..core.job import run_job
 from ..core.job_report import job_report
+from .outputs import check_output_path, require_cut_items
 from .stages import add_stage_options, job_options, progress_bar
 
 
@@ -48,8 +49,11 @@ def run(args: argparse.Namespace) -> Report:
                          source=args.post_machine)
     overrides = post_cmd.tool_overrides(args)
     tool_export.tool_map(profile, overrides)       # a bad --tool-map fails before planning
+    for name in ("job.nc", "preview.svg", "report.json"):
+        check_output_path(os.path.join(args.outdir, name))
     result = run_job(args.file, job_options(args, before="end", machine=profile),
                      None if args.json else progress_bar())
+    require_cut_items(result, args.file)
     tools = tool_export.job_for(result.plan, result.parts_to_cut, profile, overrides)
     text_nc = tool_export.render(result.plan, result.parts_to_cut, profile, "gcode", job=tools)
     outdir = args.outdir

@@ -205,8 +205,8 @@ def build_program(plan: CutPlan, profile: MachineProfile,
                        "tool_on", "tool_off")}
 
     if opts.comments:
-        prog.add(f"(LeatherCut job for {profile.name}: {len(plan.items)} items, "
-                 f"{len(tp.segment_ids)} segments)")
+        prog.add(safety.comment(f"LeatherCut job for {profile.name}: {len(plan.items)} items, "
+                                f"{len(tp.segment_ids)} segments"))
     for line in expand(profile.header, profile):
         prog.add(line)
     for line in up_lines:
@@ -223,7 +223,7 @@ def build_program(plan: CutPlan, profile: MachineProfile,
     for m in tp.moves:
         if opts.comments and m.seg and m.seg != last_seg:
             if m.seg.endswith(":1"):
-                prog.add(f"(item {m.item} {tp.item_labels[m.item - 1]})", m.seg)
+                prog.add(safety.comment(f"item {m.item} {tp.item_labels[m.item - 1]}"), m.seg)
             prog.add(f"(seg {m.seg})", m.seg)
         elif opts.comments and not m.seg and last_seg:
             prog.add(f"(end item {last_seg.split(':')[0]})")

@@ -236,6 +236,8 @@ def profile_from_dict(data: Dict[str, Any], source: str = "") -> MachineProfile:
     prof = MachineProfile(**kwargs)
     prof.source = source
     _validate(prof, source)
+    from .profile_check import check_profile   # hostile values: NaN, ranges, line form
+    check_profile(prof, source)
     return prof
 
 

@@ -9,16 +9,25 @@ move (item, segment, coordinates) or the output line at the first violation:
 3. every word of every output line is one the dialect understands: the
    dialect's G and M codes, its parameter letters and only the axes both the
    dialect and the profile have (stock GRBL 1.1 has X, Y and Z only, so a ``C``
-   word is refused), and the line fits ``max_line_length``.
+   word is refused), and the line fits ``max_line_length``;
+4. every output line is exactly one line of printable ASCII (no control
+   character, no line break: a template or a name can never add a line), its
+   comments well formed (``(`` closed, not nested);
+5. the motion of the finished program, traced line by line from machine zero
+   (:func:`check_motion`), stays inside the table: header, footer, templates
+   and whatever a writer adds, not only the planned moves.
 
-Writers call it before they return text, so a refused job writes and sends
-nothing.
+:func:`check_lines` (3 to 5) is the one check every G-code writer's finished
+lines pass (``gcode.build_program`` and any writer assembling programs);
+:func:`comment` turns user text (profile and part names) into a safe comment.  Writers call the checks before they
+return text, so a refused job writes and sends nothing.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Dict, FrozenSet, List, Sequence
+import re
+from typing import Dict, FrozenSet, Iterable, Iterator, List, Sequence, Tuple
 
 from ..core.errors import SafetyError
 from .gcode_reader import GcodeError, parse_words, strip_line
@@ -100,39 +109,59 @@ def _arc_extremes(m: Move) -> List[tuple]:
 
 
 def check_lines(lines: Sequence[str], profile: MachineProfile) -> None:
-    """Every word of every line must be known to the dialect and the machine;
-    feeds within the profile; lines no longer than ``max_line_length``."""
+    """The check every finished G-code program passes before it is returned,
+    written or sent, whoever added its lines: every word known to the dialect
+    and the machine; feeds within the profile; lines no longer than
+    ``max_line_length``; each line exactly one line of printable ASCII with
+    closed comments; and the motion, traced from machine zero
+    (:func:`check_motion`), inside the table.  One parse per line for all."""
+    _trace(_checked(lines, profile), profile)
+
+
+def _checked(lines: Sequence[str], profile: MachineProfile
+             ) -> Iterator[Tuple[int, str, List[Tuple[str, float]]]]:
+    """(line number, line, words) of every line after the word and line-form
+    checks of :func:`check_lines`; SafetyError at the first bad line."""
     words = DIALECT_WORDS[profile.dialect]
     axes = set(profile.axes) & set(words["axes"])
+    g_codes, m_codes, letters = words["G"], words["M"], words["letters"]
+
+    def where(n: int, line: str) -> str:
+        return f"output line {n} {line.strip()!r}"
+
     for n, line in enumerate(lines, 1):
+        if _BAD_LINE.search(line):
+            raise SafetyError(_bad_line_reason(line), source=where(n, line))
         block = strip_line(line)
         if not block:
+            yield n, line, []
             continue
-        where = f"output line {n} {line.strip()!r}"
         if len(block) > profile.max_line_length:
             raise SafetyError(f"{len(block)} characters, more than {profile.max_line_length} "
-                              f"{profile.dialect} accepts", source=where)
+                              f"{profile.dialect} accepts", source=where(n, line))
         try:
             parsed = parse_words(block, n)
         except GcodeError as exc:
-            raise SafetyError(f"not G-code: {exc.message}", source=where)
+            raise SafetyError(f"not G-code: {exc.message}", source=where(n, line))
         for letter, v in parsed:
-            if letter in ("G", "M"):
+            if letter == "G" or letter == "M":
                 code = round(v, 1) if letter == "G" else v
-                if code not in words[letter]:
+                if code not in (g_codes if letter == "G" else m_codes):
                     raise SafetyError(f"{letter}{v:g} is not understood by {profile.dialect}",
-                                      source=where)
+                                      source=where(n, line))
             elif letter in "XYZABCUVW":
                 if letter not in axes:
                     have = "".join(sorted(axes, key="XYZABCUVW".index))
                     raise SafetyError(f"word {letter} names an axis {profile.dialect} / "
-                                      f"{profile.name} does not have (axes {have})", source=where)
-            elif letter not in words["letters"]:
+                                      f"{profile.name} does not have (axes {have})",
+                                      source=where(n, line))
+            elif letter not in letters:
                 raise SafetyError(f"word {letter} is not understood by {profile.dialect}",
-                                  source=where)
+                                  source=where(n, line))
             if letter == "F" and not (0 < v <= profile.max_feed):
                 raise SafetyError(f"feed F{v:g} is outside 0..{profile.max_feed:g} mm/min",
-                                  source=where)
+                                  source=where(n, line))
+        yield n, line, parsed
 
 
 def check_program(lines: Sequence[str], profile: MachineProfile, name: str = "") -> None:
@@ -162,3 +191,106 @@ def check_program(lines: Sequence[str], profile: MachineProfile, name: str = "")
                     raise SafetyError(
                         f"move to ({m.end['X']:.3f}, {m.end['Y']:.3f}) reaches ({x:.3f}, {y:.3f}), "
                         f"outside the table of {profile.name}", source=f"{name} line {n}")
+
+
+#: A character no output line may hold: control characters (line breaks
+#: included), non-ASCII, or a comment that is nested or never closed.
+_BAD_LINE = re.compile(r"[^\x20-\x7e]|\([^)]*\(|\([^)]*$")
+_COMMENT_DROP = re.compile(r"[^\x20-\x7e]|[();]")
+
+
+def _bad_line_reason(line: str) -> str:
+    m = re.search(r"[^\x20-\x7e]", line)
+    if m:
+        return (f"character {m.group(0)!r} in an output line: every line must be exactly one "
+                f"line of printable ASCII")
+    return "comment not closed or nested: '(' must be closed by ')' on the same line"
+
+
+def comment(text: str, limit: int = 200) -> str:
+    """``(text)`` with everything that could end the comment or the line
+    removed (parentheses, semicolons, control and non-ASCII characters) and
+    spaces collapsed: user text (profile, part and layer names) can never
+    become G-code."""
+    clean = " ".join(_COMMENT_DROP.sub(" ", text).split())
+    return f"({clean[:limit]})"
+
+
+def words(line: str) -> List[Tuple[str, float]]:
+    """The (letter, value) words of one line (comments removed)."""
+    block = strip_line(line)
+    return parse_words(block) if block else []
+
+
+#: G codes the motion trace refuses: they change the coordinate system or move
+#: to a position stored in the controller, which no check here can see.
+_UNTRACEABLE_G = {10.0: "sets coordinate offsets", 28.0: "moves to a stored position",
+                  30.0: "moves to a stored position", 92.0: "shifts the coordinate system",
+                  92.2: "shifts the coordinate system", 92.3: "shifts the coordinate system",
+                  52.0: "shifts the coordinate system"}
+
+
+def check_motion(lines: Sequence[str], profile: MachineProfile, start=None) -> None:
+    """Trace X/Y of ``lines`` (absolute and incremental distance, mm and inch,
+    G0-G3 with arcs by their full extent) from ``start`` (machine coordinates;
+    default machine zero) and refuse any target outside the table in plan
+    coordinates (machine minus ``origin``).  Machine zero itself is always
+    allowed (the return home).  Lines must be G-code (see :func:`check_lines`,
+    which runs this trace itself)."""
+    _trace(((n, line, words(line)) for n, line in enumerate(lines, 1)), profile, start)
+
+
+def _trace(parsed: Iterable[Tuple[int, str, List[Tuple[str, float]]]],
+           profile: MachineProfile, start=None) -> None:
+    """The motion check of :func:`check_motion` over already parsed lines."""
+    xmin, ymin, xmax, ymax = profile.table_limits()
+    ox, oy = profile.origin
+    tol = 10.0 ** -profile.decimals
+    x, y = start if start is not None else (0.0, 0.0)
+    absolute, scale, motion = True, 1.0, 0.0
+
+    def inside(px: float, py: float) -> bool:
+        if px == 0.0 and py == 0.0:
+            return True
+        return (xmin - tol <= px - ox <= xmax + tol) and (ymin - tol <= py - oy <= ymax + tol)
+
+    for n, line, ws in parsed:
+        if not ws:
+            continue
+        gs = [round(v, 1) for letter, v in ws if letter == "G"]
+        vals = {letter: v for letter, v in ws if letter in "XYIJ"}
+        for g in gs:
+            if g in _UNTRACEABLE_G:
+                raise SafetyError(f"G{g:g} {_UNTRACEABLE_G[g]}: the safety check cannot follow "
+                                  f"it, so it is never written or sent",
+                                  source=f"output line {n} {line.strip()!r}")
+            if g in (90.0, 91.0):
+                absolute = g == 90.0
+            elif g in (20.0, 21.0):
+                scale = 25.4 if g == 20.0 else 1.0
+            elif g in (0.0, 1.0, 2.0, 3.0):
+                motion = g
+        arc = motion in (2.0, 3.0) and ("I" in vals or "J" in vals)
+        if ("X" not in vals and "Y" not in vals and not arc) or 4.0 in gs:
+            continue
+        nx = vals.get("X", 0.0 if not absolute else x / scale) * scale
+        ny = vals.get("Y", 0.0 if not absolute else y / scale) * scale
+        if not absolute:
+            nx, ny = x + nx, y + ny
+        pts = [(nx, ny)]
+        if arc:
+            cx, cy = x + vals.get("I", 0.0) * scale, y + vals.get("J", 0.0) * scale
+            if abs(nx - x) < 1e-9 and abs(ny - y) < 1e-9:     # full circle
+                r = math.hypot(x - cx, y - cy)
+                pts += [(cx + r, cy), (cx - r, cy), (cx, cy + r), (cx, cy - r)]
+            else:
+                pts += [(px + ox, py + oy) for px, py in _arc_extremes(Move(
+                    "arc", x=nx - ox, y=ny - oy, center=(cx - ox, cy - oy), ccw=motion == 3.0,
+                    start=(x - ox, y - oy)))]
+        for px, py in pts:
+            if not (math.isfinite(px) and math.isfinite(py)) or not inside(px, py):
+                raise SafetyError(
+                    f"motion reaches ({px - ox:.3f}, {py - oy:.3f}) mm, outside the table "
+                    f"{xmin:g}..{xmax:g} x {ymin:g}..{ymax:g} mm of {profile.name}",
+                    source=f"output line {n} {line.strip()!r}")
+        x, y = nx, ny

@@ -21,6 +21,7 @@ from typing import Any, Dict, List, Optional, Sequence
 
 from ..core.geometry import ArcSeg, Point, Transform2D
 from ..core.model import CutItem, CutPlan, Part
+from . import safety
 from .profiles import MachineProfile
 from .tool_jobs import ToolJob, ToolPass, build_tool_job
 from .toolpath import Move, Toolpath, build_toolpath, seg_id
@@ -143,8 +144,8 @@ def gcode_program(job: ToolJob, profile: MachineProfile, options=None):
         lines, segs = prog.lines, prog.segs
         if opts.comments and lines and lines[0].startswith("(LeatherCut job"):
             lines, segs = lines[1:], segs[1:]
-            out.add(f"(LeatherCut job for {profile.name}: tool {p.tool.name} = {p.tool.kind}, "
-                    f"{len(p.points) or len(p.items)} items)")
+            out.add(safety.comment(f"LeatherCut job for {profile.name}: tool {p.tool.name} = "
+                                   f"{p.tool.kind}, {len(p.points) or len(p.items)} items"))
         head = len(prof_k.header)
         select = gcode.expand([t.replace("{number}", str(p.tool.number)) for t in p.tool.select],
                               profile)

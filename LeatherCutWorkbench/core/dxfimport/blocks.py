@@ -25,6 +25,7 @@ from ..model import EdgeSource
 from ..progress import ProgressFn, report
 from .blockcache import compile_block, flat, map_edge, map_mark, map_text
 from .entities import EDGE_CONVERTERS, TEXT_CONVERTERS, Collector, point, skip_reason
+from .limits import check_expanded, minsert_cells
 from .transform import Affine, compose
 
 #: Deeper nesting than this is treated as a cyclic block reference.
@@ -52,6 +53,7 @@ class Walker:
         self.piece_inserts: "dict[str, tuple[str, str]]" = {}
         self._roles: "dict[str, str]" = {}
         self._cache: "dict[str, Optional[list]]" = {}
+        self._sizes: "dict[str, int]" = {}
 
     def _role(self, layer: str) -> str:
         role = self._roles.get(layer)
@@ -63,6 +65,7 @@ class Walker:
              lo: float, hi: float) -> None:
         """Convert the model-space ``entities`` under ``root`` (unit scale);
         progress goes from ``lo`` to ``hi``."""
+        self._check_expansion(entities)
         n = max(len(entities), 1)
         step = max(n // 50, 500)
         for i, e in enumerate(entities):
@@ -72,6 +75,37 @@ class Walker:
             if self.rules.pieces_from_inserts and e.dxftype() == "INSERT":
                 piece = self._piece_key(e)
             self.visit(e, root, "", "", None, None, piece, 0)
+
+    def _check_expansion(self, entities: "list[Any]") -> None:
+        """Refuse (limits.py) before expanding anything when the blocks would
+        expand to too many entities or a MINSERT grid is too large."""
+        total, biggest, most = 0, "", 0
+        for e in entities:
+            if e.dxftype() != "INSERT":
+                total += 1
+                continue
+            n = self._expanded(e, (), 0)
+            total += n
+            if n > most:
+                biggest, most = f"INSERT #{e.dxf.get('handle', '?')} of block {e.dxf.name!r} " \
+                                f"({n:.3g} entities)", n
+        check_expanded(total, biggest, self.out.path)
+
+    def _expanded(self, ins: Any, stack: "tuple[str, ...]", depth: int) -> int:
+        """Entities an INSERT expands to (its ATTRIBs, every grid cell, nested
+        blocks); cyclic, too deep or missing blocks count 1 (they are skipped)."""
+        name = ins.dxf.name
+        definition = self.doc.blocks.get(name)
+        if definition is None or depth >= MAX_DEPTH or name in stack:
+            return 1
+        rows, cols = _grid_shape(ins.dxf)
+        cells = minsert_cells(rows, cols, ins.dxf.get("handle", "?"), self.out.path)
+        size = self._sizes.get(name)
+        if size is None:
+            size = sum(self._expanded(c, stack + (name,), depth + 1) if c.dxftype() == "INSERT"
+                       else 1 for c in definition)
+            self._sizes[name] = size
+        return cells * size + len(ins.attribs)
 
     def _piece_key(self, insert: Any) -> str:
         name = insert.dxf.name
@@ -204,17 +238,14 @@ class Walker:
     def _grid_offsets(self, ins: Any) -> "list[Optional[Vec3]]":
         """World offsets of the MINSERT grid cells ([None] for a plain INSERT)."""
         dxf = ins.dxf
-        rows = dxf.get("row_count", 1)
-        cols = dxf.get("column_count", 1)
-        rsp = dxf.get("row_spacing", 0.0)
-        csp = dxf.get("column_spacing", 0.0)
-        if rows < 1 or cols < 1:
+        if dxf.get("row_count", 1) < 1 or dxf.get("column_count", 1) < 1:
             self.out.note("minsert-zero-count", "MINSERT with a row or column count of 0 "
                           "read as 1", dxf.get("handle", "?"))
-        if (rows <= 1 or not rsp) and (cols <= 1 or not csp):
+        rows, cols = _grid_shape(dxf)
+        if rows == 1 and cols == 1:
             return [None]
-        rows = max(rows, 1) if rsp else 1
-        cols = max(cols, 1) if csp else 1
+        rsp = dxf.get("row_spacing", 0.0)
+        csp = dxf.get("column_spacing", 0.0)
         ocs = OCS(dxf.extrusion)
         rot = dxf.get("rotation", 0.0)
         cells = []
@@ -223,3 +254,13 @@ class Walker:
                 v = Vec3(c * csp, r * rsp, 0.0).rotate_deg(rot)
                 cells.append(ocs.to_wcs(v) if (r or c) else None)
         return cells
+
+
+def _grid_shape(dxf: Any) -> "tuple[int, int]":
+    """(rows, columns) of a MINSERT grid as expanded: counts below 1 read as 1,
+    and a direction without spacing is a single row / column."""
+    rows = dxf.get("row_count", 1)
+    cols = dxf.get("column_count", 1)
+    rows = max(rows, 1) if dxf.get("row_spacing", 0.0) else 1
+    cols = max(cols, 1) if dxf.get("column_spacing", 0.0) else 1
+    return rows, cols

@@ -14,7 +14,9 @@ from typing import Any, Callable, Dict, List, Tuple
 
 from ezdxf.math import OCS
 
+from ..errors import InputError
 from ..model import EdgeSource, Finding, LineEdge, Mark, SplineEdge, TextNote
+from .limits import MAX_COORDINATE_MM
 from .transform import TWO_PI, Affine, apply, bulge_arc, conic_edge, length_scale
 
 #: Findings quoted per (entity type, reason); the rest are summarised.
@@ -120,6 +122,9 @@ def _circle(e: Any, t: Affine, src: EdgeSource, out: Collector, t_start: float, 
     if not r > 0.0:
         out.skip(e, "warning", f"radius {r} is not positive", src.block)
         return
+    if r > MAX_COORDINATE_MM:      # its square overflows: it would look edge-on
+        raise InputError(f"{e.dxftype()} #{e.dxf.get('handle') or '?'}: radius {r:g} is beyond "
+                         f"the coordinate limit of {MAX_COORDINATE_MM:.0e} mm", out.path)
     ex = _extrusion(e)
     if _is_z(ex):
         center, u, v = dxf.center, (r, 0.0, 0.0), (0.0, r, 0.0)
@@ -149,11 +154,16 @@ def arc(e: Any, t: Affine, src: EdgeSource, out: Collector) -> None:
 
 def ellipse(e: Any, t: Affine, src: EdgeSource, out: Collector) -> None:
     dxf = e.dxf
+    major, ratio = dxf.major_axis, dxf.ratio
+    if not (major[0] or major[1] or major[2]) or not 0.0 < ratio <= 1.0:
+        out.skip(e, "warning", f"ellipse with major axis {tuple(major)} and ratio {ratio} is "
+                 f"degenerate (the ratio must lie in (0, 1])", src.block)
+        return
     p1 = dxf.start_param
     span = (dxf.end_param - p1) % TWO_PI
     if span <= 1e-12 or abs(span - TWO_PI) <= 1e-12:
         span = TWO_PI
-    edge = conic_edge(t, dxf.center, dxf.major_axis, e.minor_axis, p1, span, src)
+    edge = conic_edge(t, dxf.center, major, e.minor_axis, p1, span, src)
     if edge is None:
         out.skip(e, "warning", "ellipse is degenerate or seen edge-on in the XY plane", src.block)
     else:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import gc
 from collections import Counter
 from contextlib import contextmanager
+from itertools import chain
 from operator import attrgetter, methodcaller
 from typing import Any, Dict, Iterable, List, Optional, Tuple
 
@@ -23,6 +24,7 @@ from .blocks import Rules, Walker
 from .cleanup import clean
 from .entities import Collector
 from .extents import bounds, local_offset, translate
+from .limits import check_geometry
 from .options import ImportOptions
 from .pieces import build_pieces
 from .reader import open_dxf
@@ -74,7 +76,8 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     inserts = [e for e, t in zip(entities, types) if t == "INSERT"]
     is_aama = options.pattern_mode == "aama" or (
         options.pattern_mode == "auto" and aama.looks_like_aama(ms_texts, _probe_block_texts(doc, inserts)))
-    unit, unit_source, insunits = _decide_units(doc, ms_texts, is_aama, options, path, findings)
+    unit, unit_source, insunits = _decide_units(doc, ms_texts, is_aama, options, path, findings,
+                                                opened.info.get("has_insunits", True))
     scale = MM_PER_UNIT[unit]
 
     out = Collector(path)
@@ -94,6 +97,7 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     if not is_aama:
         findings.extend(options.layer_selection().findings([e.src.layer for e in edges], path))
     box = bounds(edges, (m.position for m in marks))
+    check_geometry(path, box, chain(edges, marks, texts))
     _check_usable(path, edges, marks, texts, found, out)
     if box is not None:
         warn = plausibility_warning(((box[2] - box[0]) / scale, (box[3] - box[1]) / scale), unit)
@@ -159,9 +163,12 @@ def _probe_block_texts(doc: Any, inserts: List[Any]) -> List[str]:
 
 
 def _decide_units(doc: Any, ms_texts: List[str], is_aama: bool, options: ImportOptions,
-                  path: str, findings: List[Finding]) -> Tuple[str, str, Optional[int]]:
-    """(unit, source, raw $INSUNITS) following the policy in :mod:`.units`."""
-    insunits = doc.header.get("$INSUNITS")
+                  path: str, findings: List[Finding], has_insunits: bool = True
+                  ) -> Tuple[str, str, Optional[int]]:
+    """(unit, source, raw $INSUNITS) following the policy in :mod:`.units`.
+    ``has_insunits`` False: the file has no ``$INSUNITS`` (ezdxf's default
+    header value must not be taken for the file's statement)."""
+    insunits = doc.header.get("$INSUNITS") if has_insunits else None
     from_header = header_units(insunits)
     text_value = aama.style_value(ms_texts, "Units") if is_aama else None
     from_text = aama_units(text_value) if text_value else None
@@ -183,7 +190,8 @@ def _decide_units(doc: Any, ms_texts: List[str], is_aama: bool, options: ImportO
     if text_value:
         findings.append(Finding("warning", "units-unknown",
                                 f"unknown unit text 'Units: {text_value}'", path))
-    why = "$INSUNITS is 0 (unitless)" if insunits == 0 else "the file states no units"
+    why = ("$INSUNITS is 0 (unitless)" if insunits == 0 else "the file states no units"
+           if insunits is None else f"unknown units code {insunits} in $INSUNITS")
     findings.append(Finding("warning", "units-missing",
                             f"{why}: read as mm; choose the unit with --units if it is wrong", path))
     return "mm", "assumed", insunits

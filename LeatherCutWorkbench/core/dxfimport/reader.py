@@ -17,6 +17,7 @@ Checks done here because ezdxf does not do them (or does them silently):
 
 from __future__ import annotations
 
+import logging
 import os
 import re
 import tempfile
@@ -28,6 +29,11 @@ from ezdxf import recover
 
 from ..errors import InputError
 from ..model import Finding
+from .limits import check_regular_file, scan_nonfinite
+
+# ezdxf logs repairs as warnings; with no handler Python prints them on stderr,
+# which would break the CLI's one-line error rule.  They become findings here.
+logging.getLogger("ezdxf").addHandler(logging.NullHandler())
 
 BINARY_SENTINEL = b"AutoCAD Binary DXF"
 
@@ -46,6 +52,9 @@ _MIXED_NUMBER = re.compile(
     re.M)
 _EOF_MARK = re.compile(rb"(?:^|\n)[ \t]*0[ \t]*\r?\n[ \t]*EOF[ \t]*(?:\r?\n|$)")
 
+#: ezdxf errors after which recover mode would invent or truncate a number.
+_LOST_NUMBER = re.compile(r"Missing required|Invalid floating point|invalid floating point", re.I)
+
 #: How many recover fixes are quoted in the finding (all are counted).
 _QUOTED_FIXES = 5
 
@@ -56,7 +65,8 @@ class OpenedFile:
 
     ``info`` keys: ``binary`` (bool), ``recovered`` (bool), ``recover_fixes`` (int),
     ``recover_errors`` (int), ``decimal_commas_fixed`` (int), ``trailing_bytes`` (int),
-    ``size_bytes`` (int)."""
+    ``size_bytes`` (int), ``has_insunits`` (bool: the file itself sets ``$INSUNITS``;
+    ezdxf fills a default header for files without one)."""
 
     doc: Any
     findings: List[Finding] = field(default_factory=list)
@@ -72,13 +82,15 @@ def open_dxf(path: str) -> OpenedFile:
     findings: List[Finding] = []
     info: Dict[str, Any] = {"binary": False, "recovered": False, "recover_fixes": 0,
                             "recover_errors": 0, "decimal_commas_fixed": 0,
-                            "trailing_bytes": 0, "size_bytes": len(data)}
+                            "trailing_bytes": 0, "size_bytes": len(data),
+                            "has_insunits": b"$INSUNITS" in data}
     if data.startswith(BINARY_SENTINEL):
         info["binary"] = True
         findings.append(Finding("info", "binary-dxf", "binary DXF file", path))
         return _parse(path, path, findings, info)
 
     _check_is_dxf_text(path, data)
+    scan_nonfinite(path, data)
     info["trailing_bytes"] = _trailing_bytes(path, data, findings)
     fixed = _decimal_comma_fix(path, data)
     if fixed is None:
@@ -99,10 +111,7 @@ def open_dxf(path: str) -> OpenedFile:
 
 
 def _read_bytes(path: str) -> bytes:
-    if not os.path.exists(path):
-        raise InputError("file not found", path)
-    if os.path.isdir(path):
-        raise InputError("is a directory, not a DXF file", path)
+    check_regular_file(path)
     try:
         with open(path, "rb") as fh:
             data = fh.read()
@@ -168,6 +177,13 @@ def _decimal_comma_fix(path: str, data: bytes) -> Optional["tuple[bytes, int]"]:
     numbers cannot be trusted either way)."""
     if b"," not in data:
         return None
+    mixed = _MIXED_NUMBER.search(data)
+    if mixed:
+        line = data.count(b"\n", 0, mixed.start()) + 2
+        value = mixed.group(0).split(b"\n")[-1].strip().decode("latin-1")
+        raise InputError(f"the number {value!r} at line {line} mixes decimal points and commas: "
+                         f"it cannot be read reliably; export the file again with '.' as "
+                         f"decimal separator", path)
     commas = list(_COMMA_PAIR.finditer(data))
     if not commas:
         return None
@@ -197,6 +213,10 @@ def _parse(path: str, real_path: str, findings: List[Finding], info: Dict[str, A
         raise InputError(f"cannot read the file: {exc}", path) from exc
     except Exception as exc:  # any ezdxf parse failure: try recover mode
         first_error = f"{type(exc).__name__}: {exc}"
+        if _LOST_NUMBER.search(str(exc)):
+            # recover would read the value as 0 (or truncate it): data silently changed
+            raise InputError(f"{first_error.rstrip('.')}: a coordinate is missing or not a "
+                             f"number; refused rather than read as 0", path) from exc
     try:
         doc, auditor = recover.readfile(real_path)
     except Exception as exc:

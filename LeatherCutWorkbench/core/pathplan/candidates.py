@@ -16,6 +16,10 @@ import numpy as np
 
 from ..geometry import Point, Segment
 
+#: Most spacing points generated on one contour before thinning (bounded memory
+#: whatever the contour length).
+_MAX_SPACED = 100_000
+
 
 def entry_positions(segments: Sequence[Segment], spacing: float,
                     max_candidates: int = 64) -> List[float]:
@@ -29,13 +33,18 @@ def entry_positions(segments: Sequence[Segment], spacing: float,
     verts = np.concatenate([[0.0], np.cumsum(lengths)[:-1]])
     pos = list(verts)
     if spacing and spacing > 0:
-        k = max(1, int(math.ceil(total / spacing)))
+        # at most _MAX_SPACED points (the result is thinned to max_candidates anyway)
+        k = max(1, min(int(math.ceil(total / spacing)), _MAX_SPACED))
         step = total / k
         along = np.arange(k) * step
         if len(verts):
-            # distance (along the loop) to the nearest vertex
-            dv = np.abs(along[:, None] - verts[None, :])
-            dv = np.minimum(dv, total - dv).min(axis=1)
+            # distance (along the loop) to the nearest vertex: verts are sorted, so
+            # only the neighbours either side (and the wrap-around) can be nearest
+            j = np.searchsorted(verts, along)
+            before = verts[np.clip(j - 1, 0, len(verts) - 1)]
+            after = verts[np.clip(j, 0, len(verts) - 1)]
+            dv = np.minimum(np.abs(along - before), np.abs(after - along))
+            dv = np.minimum(dv, np.minimum(total - along + verts[0], along + total - verts[-1]))
             along = along[dv > 0.25 * step]
         pos.extend(along.tolist())
     pos = np.unique(np.round(np.asarray(pos), 9))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import FrozenSet, Optional
 
@@ -48,12 +49,13 @@ class RecogniseOptions:
 
     def validate(self) -> None:
         """Raise :class:`InputError` for unusable values."""
-        if not self.join_tol > 0:
+        if not 0 < self.join_tol < math.inf:
             raise InputError(f"join tolerance must be > 0 mm, got {self.join_tol}", "--join-tol")
-        if self.gap_tol < 0:
+        if not 0 <= self.gap_tol < math.inf:
             raise InputError(f"gap tolerance must be >= 0 mm, got {self.gap_tol}", "--gap-tol")
-        if not self.chord_tol > 0:
-            raise InputError(f"chord tolerance must be > 0 mm, got {self.chord_tol}", "--chord-tol")
+        if not 0.001 <= self.chord_tol <= 10.0:     # finer flattening never ends on big curves
+            raise InputError(f"chord tolerance must lie in 0.001 .. 10 mm, got {self.chord_tol}",
+                             "--chord-tol")
         both = set(self.accept_fixes or ()) & set(self.reject_fixes or ())
         if both:
             raise InputError("fixes both accepted and rejected: " + ", ".join(sorted(both)),

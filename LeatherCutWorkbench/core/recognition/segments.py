@@ -17,9 +17,17 @@ if TYPE_CHECKING:  # graph imports this module: only the type is needed here
     from .graph import Piece
 
 
+#: A segment whose box covers more grid cells than this is kept in a short
+#: list tested by every query instead (one long line beside many short ones
+#: would otherwise fill millions of cells).
+MAX_CELLS_PER_SEGMENT = 1024
+
+
 class SegmentIndex:
     """Uniform grid over segment bounding boxes (cell about the median size);
-    boxes are kept as tuples so a point query filters without geometry."""
+    boxes are kept as tuples so a point query filters without geometry.
+    Segments spanning more than :data:`MAX_CELLS_PER_SEGMENT` cells are
+    listed in ``big`` and checked by every query."""
 
     def __init__(self, pieces: List[Piece], tol: float, chord_tol: float = 0.0):
         self.tol = tol
@@ -30,6 +38,7 @@ class SegmentIndex:
         med = sizes[len(sizes) // 2] if sizes else 1.0
         self.cell = max(med, 10 * tol, 1e-6)
         self.cells: Dict[Tuple[int, int], List[int]] = defaultdict(list)
+        self.big: List[int] = []
         for i in range(len(self.boxes)):
             self._insert(i)
         self._indexed = len(pieces)
@@ -42,6 +51,9 @@ class SegmentIndex:
         cells = self.cells
         if ix0 == ix1 and iy0 == iy1:
             cells[(ix0, iy0)].append(i)
+            return
+        if (ix1 - ix0 + 1) * (iy1 - iy0 + 1) > MAX_CELLS_PER_SEGMENT:
+            self.big.append(i)
             return
         for ix in range(ix0, ix1 + 1):
             for iy in range(iy0, iy1 + 1):
@@ -67,13 +79,22 @@ class SegmentIndex:
         if radius <= 0:
             keys = [(math.floor(x / c), math.floor(y / c))]
         else:
-            keys = [(ix, iy) for ix in range(math.floor((x - r) / c), math.floor((x + r) / c) + 1)
-                    for iy in range(math.floor((y - r) / c), math.floor((y + r) / c) + 1)]
+            ix0, ix1 = math.floor((x - r) / c), math.floor((x + r) / c)
+            iy0, iy1 = math.floor((y - r) / c), math.floor((y + r) / c)
+            if (ix1 - ix0 + 1) * (iy1 - iy0 + 1) > MAX_CELLS_PER_SEGMENT:
+                # a query wider than the grid is worth: test every box
+                return [j for j, b in enumerate(boxes)
+                        if b[0] - r <= x <= b[2] + r and b[1] - r <= y <= b[3] + r]
+            keys = [(ix, iy) for ix in range(ix0, ix1 + 1) for iy in range(iy0, iy1 + 1)]
         for key in keys:
             for j in self.cells.get(key, ()):
                 b = boxes[j]
                 if b[0] - r <= x <= b[2] + r and b[1] - r <= y <= b[3] + r:
                     out.append(j)
+        for j in self.big:
+            b = boxes[j]
+            if b[0] - r <= x <= b[2] + r and b[1] - r <= y <= b[3] + r:
+                out.append(j)
         return out
 
 

@@ -63,9 +63,17 @@ def spline_curve(edge: SplineEdge) -> "Part.BSplineCurve":
     if sum(mults) != n + p + 1:
         raise InputError("spline end knots repeated more than degree + 1 times", describe(edge))
     weights = list(edge.weights) if edge.weights and len(edge.weights) == n else [1.0] * n
+    if not all(w > 0 and math.isfinite(w) for w in weights):
+        raise InputError("spline weights must be positive finite numbers", describe(edge))
+    if not all(math.isfinite(k) for k in uk) or any(b <= a for a, b in zip(uk, uk[1:])):
+        raise InputError("spline knots must be finite and non-decreasing", describe(edge))
     curve = Part.BSplineCurve()
-    curve.buildFromPolesMultsKnots([V(x, y, 0) for x, y in edge.poles], mults, uk, False, p,
-                                   weights)
+    try:
+        curve.buildFromPolesMultsKnots([V(x, y, 0) for x, y in edge.poles], mults, uk, False, p,
+                                       weights)
+    except Exception as exc:   # Part.OCCError and friends: a spline OCC cannot build
+        raise InputError(f"spline cannot be built ({type(exc).__name__}: {exc})",
+                         describe(edge)) from exc
     return curve
 
 
@@ -94,7 +102,11 @@ def flatten(edge: "Part.Edge", chord_tol: float, kind: str) -> CurveSeg:
     pts = edge.discretize(Deflection=chord_tol)
     if len(pts) < 2:
         pts = [edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter)]
-    return CurveSeg(tuple((p.x, p.y) for p in pts), kind)
+    xy = tuple((p.x, p.y) for p in pts)
+    if not all(math.isfinite(v) for p in xy for v in p):
+        raise InputError(f"{kind} evaluates to points that are not finite (degenerate knots "
+                         f"or weights)")
+    return CurveSeg(xy, kind)
 
 
 def to_segment(edge, chord_tol: float) -> Tuple[Segment, Optional["Part.Edge"]]:
@@ -109,12 +121,18 @@ def to_segment(edge, chord_tol: float) -> Tuple[Segment, Optional["Part.Edge"]]:
             raise InputError(f"arc with radius {edge.radius}", describe(edge))
         sweep = max(-360.0, min(360.0, edge.sweep))
         return ArcSeg(tuple(edge.center), edge.radius, edge.start_angle, sweep), None
-    if isinstance(edge, EllipseEdge):
-        pe = ellipse_edge(edge)
-        return flatten(pe, chord_tol, "ellipse"), pe
-    if isinstance(edge, SplineEdge):
-        pe = spline_curve(edge).toShape()
-        return flatten(pe, chord_tol, "spline"), pe
+    try:
+        if isinstance(edge, EllipseEdge):
+            pe = ellipse_edge(edge)
+            return flatten(pe, chord_tol, "ellipse"), pe
+        if isinstance(edge, SplineEdge):
+            pe = spline_curve(edge).toShape()
+            return flatten(pe, chord_tol, "spline"), pe
+    except InputError:
+        raise
+    except Exception as exc:   # OCC failures building or flattening a free-form curve
+        raise InputError(f"curve cannot be built ({type(exc).__name__}: {exc})",
+                         describe(edge)) from exc
     raise InputError(f"unknown edge type {type(edge).__name__}", describe(edge))
 
 
