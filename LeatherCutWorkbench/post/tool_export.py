@@ -21,7 +21,6 @@ from typing import Any, Dict, List, Optional, Sequence
 
 from ..core.geometry import ArcSeg, Point, Transform2D
 from ..core.model import CutItem, CutPlan, Part
-from . import safety
 from .profiles import MachineProfile
 from .tool_jobs import ToolJob, ToolPass, build_tool_job
 from .toolpath import Move, Toolpath, build_toolpath, seg_id
