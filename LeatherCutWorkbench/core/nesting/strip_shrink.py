@@ -1,0 +1,185 @@
+"""Strip improvement phase: shrink the strip, then separate the overlaps.
+
+:func:`improve_strip` takes a valid strip layout (the engine's best) and,
+until the deadline, repeatedly
+
+1. closes the strip a little shorter than the best valid layout: the copies
+   right of a random vertical cut move left by the difference (sparrow's
+   shrink), everything is pushed back inside, which creates overlaps;
+2. runs the separator (:mod:`separation`: guided local search over the
+   penetration depths of :mod:`overlap`) until no pair overlaps;
+3. on success keeps the layout as the new best, on failure goes back to the
+   best and tries a smaller shrink (1 % of the length down to 0.05 %, then
+   big steps again from another cut).
+
+Several worker processes (``options.workers``, default all cores up to 8)
+run this loop with their own random streams; the shortest strip wins.  The
+result is re-checked by the independent :func:`checker.check_layout`; if it
+is not valid or not shorter, the input layout is returned unchanged, so the
+phase can never make a layout worse.
+
+Lengths: mm in the :class:`Layout`, the engine's integer grid inside.
+"""
+
+from __future__ import annotations
+
+import copy
+import multiprocessing as mp
+import os
+import time
+from typing import List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ..model import Layout, Part, Placement
+from .checker import check_layout
+from .options import NestOptions
+from .overlap import PairTable
+from .separation import Separator, seed_rng
+from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
+
+#: the longest container or part dimension spans this many grid units
+GRID_UNITS = 1.0e6
+MAX_SHRINK = 0.01
+MIN_SHRINK = 0.0005
+
+
+class _Instance:
+    """Copies of a strip layout in the separator's terms (grid units)."""
+
+    def __init__(self, layout: Layout, parts: Sequence[Part], options: NestOptions):
+        spec = options.container
+        self.options = options
+        pieces = [piece_from_part(p, options.chord_tol, options.rotation_step,
+                                  options.part_rotations(p.rotations), options.mirror_override)
+                  for p in parts]
+        dims = [spec.height] + [float(abs(t.outer).max()) * 2.0 for t in pieces]
+        length = float(layout.metrics.get("strip_length_mm", 0.0))
+        self.scale = s = max(GRID_UNITS / max(max(dims + [length]), 1e-9), 10.0 / options.tolerance)
+        self.pieces = pieces
+        self.variants = make_variants(pieces, s, options.spacing / 2.0, options.chord_tol)
+        self.choices = [[v.index for v in self.variants if v.type_index == t] for t in range(len(pieces))]
+        core = [np.asarray(v.core, dtype=np.float64) for v in self.variants]
+        self.cb = np.array([[c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max()] for c in core])
+        key = {t.key: k for k, t in enumerate(pieces)}
+        m = options.margin
+        self.x0, self.y0, self.y1 = m * s, m * s, (spec.height - m) * s
+        # overlaps up to a quarter of the checker's tolerance are contact (the
+        # engine's own rounding leaves such touching pairs)
+        self.eps = 0.25 * options.tolerance * s
+        n = len(layout.placements)
+        self.X, self.Y = np.zeros(n), np.zeros(n)
+        self.V = np.zeros(n, dtype=np.int64)
+        self.types = np.zeros(n, dtype=np.int64)
+        self.ok = True
+        for i, pl in enumerate(layout.placements):
+            t = key.get(pl.part_id)
+            found = None if t is None else self._variant_of(t, pl)
+            if found is None:
+                self.ok = False
+                return
+            self.types[i], (self.V[i], self.X[i], self.Y[i]) = t, found
+
+    def _variant_of(self, t: int, pl: Placement) -> Optional[Tuple[int, float, float]]:
+        """The variant showing placement ``pl``'s shape and its reference point."""
+        piece = self.pieces[t]
+        s = self.scale
+        ring = transform_ring(piece.outer, pl.angle, pl.mirrored)
+        for vi in self.choices[t]:
+            v = self.variants[vi]
+            if v.mirrored == pl.mirrored and abs((v.angle - pl.angle + 180.0) % 360.0 - 180.0) < 1e-6:
+                return vi, pl.x * s, pl.y * s
+        for vi in self.choices[t]:          # an orientation kept once (same shape moved)
+            v = self.variants[vi]
+            vr = transform_ring(piece.outer, v.angle, v.mirrored)
+            if _same_shape(ring, vr, max(piece.tol, 1e-6)):
+                d = ring.min(axis=0) - vr.min(axis=0)
+                return vi, (pl.x + d[0]) * s, (pl.y + d[1]) * s
+        return None
+
+    def right_edge(self, X: np.ndarray, V: np.ndarray) -> float:
+        return float((X + self.cb[V, 2]).max())
+
+    def to_layout(self, base: Layout, X: np.ndarray, Y: np.ndarray, V: np.ndarray) -> Layout:
+        out = copy.deepcopy(base)
+        s = self.scale
+        for i, pl in enumerate(out.placements):
+            v = self.variants[int(V[i])]
+            pl.x, pl.y, pl.angle, pl.mirrored = float(X[i]) / s, float(Y[i]) / s, v.angle, v.mirrored
+        return out
+
+
+def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed: int):
+    """One worker's shrink-and-separate loop (see module doc): best (x1, X, Y, V)."""
+    rng = np.random.default_rng(seed)
+    seed_rng(seed)
+    cb, x0 = inst.cb, inst.x0
+    best = (inst.right_edge(X, V), X.copy(), Y.copy(), V.copy())
+    frac = MAX_SHRINK
+    while time.monotonic() < deadline:
+        bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
+        x1 = bx1 - frac * (bx1 - x0)
+        cut = rng.uniform(x0, bx1)
+        centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
+        X[centre > cut] -= bx1 - x1
+        X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+        if sep.separate(X, Y, V, x1, deadline, rng=rng):
+            best = (inst.right_edge(X, V), X, Y, V)
+            frac = min(MAX_SHRINK, frac * 1.5)
+        else:
+            frac *= 0.5
+            if frac < MIN_SHRINK:
+                frac = MAX_SHRINK
+    return best
+
+
+def _worker(args):
+    inst, sep, deadline, seed = args
+    return _shrink_loop(inst, sep, inst.X.copy(), inst.Y.copy(), inst.V.copy(), deadline, seed)
+
+
+def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
+                  deadline: float) -> Layout:
+    """A valid strip layout no longer than ``layout`` (see module doc).
+
+    ``layout`` must be a checked strip layout of ``parts`` under ``options``
+    (every copy placed); ``deadline`` is a ``time.monotonic()`` value.  Other
+    containers, an incomplete layout or too little time return ``layout``."""
+    if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2:
+        return layout
+    if time.monotonic() > deadline - 0.2:
+        return layout
+    inst = _Instance(layout, parts, options)
+    if not inst.ok:
+        return layout
+    table = PairTable(inst.variants)
+    sep = Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
+                    inst.eps)
+    sep.overlaps(inst.X, inst.Y, inst.V)               # compile / load the kernels once
+    n = options.workers or max(1, min(os.cpu_count() or 1, 8))
+    seeds = [options.seed * 7919 + k for k in range(n)]
+    if n == 1:
+        results = [_worker((inst, sep, deadline, seeds[0]))]
+    else:
+        ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
+        with ctx.Pool(n) as pool:
+            results = pool.map(_worker, [(inst, sep, deadline, sd) for sd in seeds])
+    best = min(results, key=lambda r: r[0])
+    return _accept(layout, parts, options, inst.to_layout(layout, best[1], best[2], best[3]))
+
+
+def _accept(old: Layout, parts: Sequence[Part], options: NestOptions, new: Layout) -> Layout:
+    """``new`` if the checker passes it and its strip is shorter, else ``old``."""
+    from .engine import fill_metrics
+    fill_metrics(parts, new, options)
+    if new.metrics["strip_length_mm"] >= old.metrics.get("strip_length_mm", float("inf")):
+        return old
+    problems: List[str] = check_layout(parts, new, spacing=options.spacing, margin=options.margin,
+                                       tol=options.tolerance, chord_tol=options.chord_tol,
+                                       rotations_override=options.rotations_override,
+                                       mirror_override=options.mirror_override,
+                                       free_rotation=options.free_rotation)
+    if problems:
+        return old
+    new.metrics["strip_improved_from_mm"] = old.metrics.get("strip_length_mm")
+    return new
