@@ -28,6 +28,7 @@ from __future__ import annotations
 from typing import List, Sequence
 
 import numpy as np
+import pyclipper
 from numba import njit
 
 from .nfp import pair_nfp
@@ -47,18 +48,21 @@ class PairTable:
         self.n = n
         rings: List[List[np.ndarray]] = [[] for _ in range(n * n)]
         for a in range(n):
-            for b in range(n):
-                p = a * n + b
-                if rings[p]:
-                    continue
-                paths = [np.asarray(r, dtype=np.float64) for r in pair_nfp(variants[a], variants[b])
-                         if len(r) >= 3]
-                rings[p] = paths
-                # NFP(b, a) = -NFP(a, b) when neither has holes (no part-in-part
-                # islands, which only the holed piece's NFP carries); negating keeps
-                # each ring's orientation (a half turn)
-                if a != b and not variants[a].holes and not variants[b].holes:
-                    rings[b * n + a] = [-r for r in paths]
+            for b in range(a, n):
+                paths = pair_nfp(variants[a], variants[b])
+                if a != b and (variants[a].holes or variants[b].holes):
+                    # pair_nfp cuts out only a's holes (b inside a); -NFP(b, a) cuts
+                    # out b's (a inside b): the exact NFP is their intersection
+                    back = [[[-x, -y] for x, y in r] for r in pair_nfp(variants[b], variants[a])]
+                    clip = pyclipper.Pyclipper()
+                    clip.AddPaths(paths, pyclipper.PT_SUBJECT, True)
+                    clip.AddPaths(back, pyclipper.PT_CLIP, True)
+                    paths = clip.Execute(pyclipper.CT_INTERSECTION, pyclipper.PFT_NONZERO,
+                                         pyclipper.PFT_NONZERO) if paths and back else []
+                rs = [np.asarray(r, dtype=np.float64) for r in paths if len(r) >= 3]
+                rings[a * n + b] = rs
+                # NFP(b, a) = -NFP(a, b); negating keeps each ring's orientation
+                rings[b * n + a] = [-r for r in rs]
         starts, counts, lo, hi, chunks = [], [], [], [], []
         bbox = np.zeros((n * n, 4))
         off = 0

@@ -137,6 +137,12 @@ class Separator:
         n = len(types)
         self.W = np.ones((n, n))
 
+    def warm_up(self, X, Y, V, x1: float) -> None:
+        """Compile (or load) the kernels once, before worker processes fork."""
+        self.overlaps(X, Y, V)
+        move_copy(0, X.copy(), Y.copy(), V.copy(), self.W[0], self.choices[self.types[0]], self.cb,
+                  self.x0, x1, self.y0, self.y1, self.table.n, 1, 1, *self.arrs)
+
     def overlaps(self, X, Y, V) -> np.ndarray:
         return overlap_matrix(X, Y, V, self.table.n, *self.arrs)
 
@@ -169,7 +175,7 @@ class Separator:
             if total == 0.0:
                 return True
             # guided local search: colliding pairs get heavier, the rest decay to 1
-            W[coll] *= 1.2
+            W[coll] = np.minimum(W[coll] * 1.2, 1e6)
             W[~coll] = np.maximum(1.0, W[~coll] * 0.95)
             if total < best[0] * 0.999:
                 best = (total, X.copy(), Y.copy(), V.copy())

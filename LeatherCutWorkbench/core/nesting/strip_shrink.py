@@ -24,6 +24,7 @@ Lengths: mm in the :class:`Layout`, the engine's integer grid inside.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import multiprocessing as mp
 import os
 import time
@@ -31,7 +32,9 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ..errors import CancelledError
 from ..model import Layout, Part, Placement
+from ..progress import ProgressFn, report
 from .checker import check_layout
 from .options import NestOptions
 from .overlap import PairTable
@@ -40,6 +43,8 @@ from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 
 #: the longest container or part dimension spans this many grid units
 GRID_UNITS = 1.0e6
+#: share of the time budget the engine's own search gets before this phase (:func:`nest_strip`)
+SEARCH_SHARE = 0.25
 MAX_SHRINK = 0.01
 MIN_SHRINK = 0.0005
 
@@ -139,15 +144,16 @@ def _worker(args):
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
-                  deadline: float) -> Layout:
+                  deadline: float, progress: Optional[ProgressFn] = None) -> Layout:
     """A valid strip layout no longer than ``layout`` (see module doc).
 
-    ``layout`` must be a checked strip layout of ``parts`` under ``options``
-    (every copy placed); ``deadline`` is a ``time.monotonic()`` value.  Other
-    containers, an incomplete layout or too little time return ``layout``."""
+    ``layout`` is a strip layout of ``parts`` under ``options``; ``deadline``
+    a ``time.monotonic()`` value.  Another container kind, an incomplete or
+    invalid layout, or too little time return ``layout`` itself.  ``progress``
+    is polled about every 0.1 s (CancelledError when it asks to stop)."""
     if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2:
         return layout
-    if time.monotonic() > deadline - 0.2:
+    if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
         return layout
     inst = _Instance(layout, parts, options)
     if not inst.ok:
@@ -155,17 +161,56 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     table = PairTable(inst.variants)
     sep = Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
                     inst.eps)
-    sep.overlaps(inst.X, inst.Y, inst.V)               # compile / load the kernels once
+    sep.warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
     n = options.workers or max(1, min(os.cpu_count() or 1, 8))
-    seeds = [options.seed * 7919 + k for k in range(n)]
-    if n == 1:
-        results = [_worker((inst, sep, deadline, seeds[0]))]
+    jobs = [(inst, sep, deadline, options.seed * 7919 + k) for k in range(n)]
+    t0 = time.monotonic()
+    span = max(deadline - t0, 1e-9)
+    msg = f"compacting the strip ({n} workers)"
+    if n == 1 and progress is None:
+        results = [_worker(jobs[0])]
     else:
         ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
-        with ctx.Pool(n) as pool:
-            results = pool.map(_worker, [(inst, sep, deadline, sd) for sd in seeds])
+        pool = ctx.Pool(n)
+        try:
+            pending = pool.map_async(_worker, jobs)
+            while not pending.ready():
+                report(progress, 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / span), msg)
+                pending.wait(0.1)
+            results = pending.get()
+        except CancelledError:
+            pool.terminate()
+            raise
+        finally:
+            pool.close()
+            pool.join()
     best = min(results, key=lambda r: r[0])
     return _accept(layout, parts, options, inst.to_layout(layout, best[1], best[2], best[3]))
+
+
+def nest_strip(parts: Sequence[Part], options: NestOptions,
+               progress: Optional[ProgressFn] = None) -> Layout:
+    """The own engine on a strip: its search for ``SEARCH_SHARE`` of the time
+    budget, then :func:`improve_strip` until the budget ends.  With
+    ``max_evaluations`` (a reproducible run) or no budget only the search runs:
+    this phase is driven by the clock."""
+    from .engine import run_own
+    t0 = time.monotonic()
+    if options.max_evaluations is not None or options.time_budget <= 0:
+        return run_own(parts, options, progress)
+    first = dataclasses.replace(options, time_budget=options.time_budget * SEARCH_SHARE)
+    layout = run_own(parts, first, progress)
+    better = improve_strip(layout, parts, options, t0 + options.time_budget, progress)
+    better.metrics["time_s"] = round(time.monotonic() - t0, 3)
+    return better
+
+
+def _problems(parts: Sequence[Part], layout: Layout, options: NestOptions) -> List[str]:
+    return check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
+                        tol=options.tolerance, chord_tol=options.chord_tol,
+                        rotations_override=options.rotations_override,
+                        mirror_override=options.mirror_override,
+                        free_rotation=options.free_rotation)
 
 
 def _accept(old: Layout, parts: Sequence[Part], options: NestOptions, new: Layout) -> Layout:
@@ -174,12 +219,7 @@ def _accept(old: Layout, parts: Sequence[Part], options: NestOptions, new: Layou
     fill_metrics(parts, new, options)
     if new.metrics["strip_length_mm"] >= old.metrics.get("strip_length_mm", float("inf")):
         return old
-    problems: List[str] = check_layout(parts, new, spacing=options.spacing, margin=options.margin,
-                                       tol=options.tolerance, chord_tol=options.chord_tol,
-                                       rotations_override=options.rotations_override,
-                                       mirror_override=options.mirror_override,
-                                       free_rotation=options.free_rotation)
-    if problems:
+    if _problems(parts, new, options):
         return old
     new.metrics["strip_improved_from_mm"] = old.metrics.get("strip_length_mm")
     return new

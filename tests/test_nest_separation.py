@@ -1,0 +1,116 @@
+"""The strip improvement phase (overlap penetration depth, separator, shrink
+loop) on real geometry: the ESICUP instance fu and real parts with holes.
+Every returned layout is re-checked with the independent checker."""
+
+import os
+import time
+
+import numpy as np
+import pytest
+
+from LeatherCutWorkbench.core.model import Container, Layout, Placement
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
+from LeatherCutWorkbench.core.nesting.engine import fill_metrics
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
+from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
+from LeatherCutWorkbench.core.nesting.strip_shrink import improve_strip
+
+from nest_shapes import frame, rect
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+
+
+def _fu():
+    inst = read_esicup(os.path.join(DATA, "fu.json"))
+    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=0.5,
+                       max_evaluations=8, seed=1, workers=1)
+    return inst.parts, opts
+
+
+def _valid(parts, lay, opts):
+    return check_layout(parts, lay, spacing=opts.spacing, margin=opts.margin)
+
+
+def _loose_row(parts, opts, gap):
+    """Every copy at angle 0 in one row along the strip, ``gap`` mm apart: valid, loose."""
+    placements, x = [], 0.0
+    for p in parts:
+        x0, y0, x1, y1 = p.outer.bbox
+        for k in range(p.quantity):
+            placements.append(Placement(part_id=p.id, copy=k, container="strip",
+                                        x=x - x0 + opts.margin, y=opts.margin - y0, angle=0.0))
+            x += (x1 - x0) + gap
+    lay = Layout(containers=[Container(id="strip", kind="strip", outline=[])],
+                 placements=placements)
+    fill_metrics(parts, lay, opts)
+    return lay
+
+
+def test_penetration_depth_of_two_squares_is_the_shortest_separating_move():
+    sq = rect("s", 10, 10)
+    scale = 1000.0                         # grid units per mm
+    v = make_variants([piece_from_part(sq, 0.05, 90, [0])], scale, 0.0, 0.05)
+    tab = PairTable(v)
+    arrs = tab.arrays()
+    # B 7 mm right and 2 mm up of A: pushing it 3 mm right separates them
+    assert pair_depth(7000.0, 2000.0, 0, *arrs) == pytest.approx(3000.0, abs=3.0)
+    assert pair_depth(1000.0, -9000.0, 0, *arrs) == pytest.approx(1000.0, abs=3.0)
+    assert pair_depth(10010.0, 0.0, 0, *arrs) == 0.0        # 10 microns apart: no overlap
+    assert pair_depth(0.0, 0.0, 0, *arrs) == pytest.approx(10000.0, abs=3.0)
+
+
+def test_depth_is_zero_for_a_part_inside_the_hole_of_another():
+    fr = frame("F", 100, 100, 10)          # hole 80 x 80 mm
+    small = rect("s", 20, 20)
+    pieces = [piece_from_part(p, 0.05, 90, [0]) for p in (fr, small)]
+    v = make_variants(pieces, 100.0, 0.0, 0.05)
+    tab = PairTable(v)
+    p = 0 * tab.n + 1                      # the square around the fixed frame
+    assert pair_depth(4000.0, 4000.0, p, *tab.arrays()) == 0.0           # inside the hole
+    assert pair_depth(500.0, 4000.0, p, *tab.arrays()) > 400.0           # on the frame's bar
+
+
+def test_engine_layout_is_never_made_invalid_or_longer():
+    parts, opts = _fu()
+    lay = nest(parts, opts)
+    before = lay.metrics["strip_length_mm"]
+    new = improve_strip(lay, parts, opts, time.monotonic() + 2.0)
+    assert _valid(parts, new, opts) == []
+    assert new.unplaced == [] and len(new.placements) == len(lay.placements)
+    assert new.metrics["strip_length_mm"] <= before
+    assert new.metrics["density"] >= lay.metrics["density"]
+
+
+def test_loose_layout_shrinks_a_lot_and_stays_valid_with_spacing_and_margin():
+    parts, opts = _fu()
+    opts.spacing, opts.margin = 0.5, 1.0
+    loose = _loose_row(parts, opts, gap=3.0)
+    assert _valid(parts, loose, opts) == []
+    before = loose.metrics["strip_length_mm"]
+    new = improve_strip(loose, parts, opts, time.monotonic() + 3.0)
+    assert _valid(parts, new, opts) == []
+    assert len(new.placements) == len(loose.placements)
+    # one row of 12 copies is > 3x longer than a packed strip: expect far less than half
+    assert new.metrics["strip_length_mm"] < 0.5 * before
+    assert new.metrics["strip_improved_from_mm"] == pytest.approx(before)
+
+
+def test_parts_with_holes_can_take_a_copy_in_the_hole():
+    parts = [frame("F", 60, 60, 8, q=2), rect("s", 30, 30, q=2, rotations=[0])]
+    opts = NestOptions(container=ContainerSpec.strip(60), workers=1)
+    loose = _loose_row(parts, opts, gap=5.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 2.0)
+    assert _valid(parts, new, opts) == []
+    # the frames need 120 mm side by side; the squares only fit without growing it in the holes
+    assert new.metrics["strip_length_mm"] < 121.0
+
+
+def test_other_containers_and_incomplete_layouts_come_back_unchanged():
+    parts, opts = _fu()
+    lay = nest(parts, opts)
+    sheet = NestOptions(container=ContainerSpec.sheet(100, 40), workers=1)
+    assert improve_strip(lay, parts, sheet, time.monotonic() + 1.0) is lay
+    lay.unplaced.append((parts[0].id, 99))
+    assert improve_strip(lay, parts, opts, time.monotonic() + 1.0) is lay
+    assert np.isfinite(lay.metrics["strip_length_mm"])
