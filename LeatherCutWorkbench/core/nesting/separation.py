@@ -175,7 +175,8 @@ class Separator:
             if total == 0.0:
                 return True
             # guided local search: colliding pairs get heavier, the rest decay to 1
-            W[coll] = np.minimum(W[coll] * 1.2, 1e6)
+            # (x1.2 for the slightest overlap up to x2 for the deepest one)
+            W[coll] = np.minimum(W[coll] * (1.2 + 0.8 * od[coll] / od.max()), 1e6)
             W[~coll] = np.maximum(1.0, W[~coll] * 0.95)
             if total < best[0] * 0.999:
                 best = (total, X.copy(), Y.copy(), V.copy())

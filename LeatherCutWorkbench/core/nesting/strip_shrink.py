@@ -47,6 +47,8 @@ GRID_UNITS = 1.0e6
 SEARCH_SHARE = 0.25
 MAX_SHRINK = 0.01
 MIN_SHRINK = 0.0005
+SHRINK_BACKOFF = 0.5
+SWAP_P = 0.5
 
 
 class _Instance:
@@ -114,25 +116,59 @@ class _Instance:
         return out
 
 
+def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
+    """Disrupt a layout: two copies of different types among the larger half
+    trade places (bounding-box centres), so the separator can find another
+    arrangement than the one it got stuck in."""
+    cb = inst.cb
+    area = (cb[V, 2] - cb[V, 0]) * (cb[V, 3] - cb[V, 1])
+    big = np.nonzero(area >= np.median(area))[0]
+    for _ in range(10):
+        a, b = rng.choice(big, 2, replace=False) if len(big) > 1 else (0, 0)
+        if inst.types[a] != inst.types[b]:
+            break
+    else:
+        return
+    ca = (X[a] + 0.5 * (cb[V[a], 0] + cb[V[a], 2]), Y[a] + 0.5 * (cb[V[a], 1] + cb[V[a], 3]))
+    cb_ = (X[b] + 0.5 * (cb[V[b], 0] + cb[V[b], 2]), Y[b] + 0.5 * (cb[V[b], 1] + cb[V[b], 3]))
+    X[a] += cb_[0] - ca[0]
+    Y[a] += cb_[1] - ca[1]
+    X[b] += ca[0] - cb_[0]
+    Y[b] += ca[1] - cb_[1]
+
+
+def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
+    """Close the strip from ``bx1`` to ``x1``: copies right of a random cut move
+    left by the difference, then every copy is pushed back inside."""
+    cb, x0 = inst.cb, inst.x0
+    cut = rng.uniform(x0, bx1)
+    centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
+    X[centre > cut] -= bx1 - x1
+    X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+    Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
+
+
 def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed: int):
     """One worker's shrink-and-separate loop (see module doc): best (x1, X, Y, V)."""
     rng = np.random.default_rng(seed)
     seed_rng(seed)
-    cb, x0 = inst.cb, inst.x0
+    x0 = inst.x0
     best = (inst.right_edge(X, V), X.copy(), Y.copy(), V.copy())
     frac = MAX_SHRINK
+    fails = 0
     while time.monotonic() < deadline:
         bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
         x1 = bx1 - frac * (bx1 - x0)
-        cut = rng.uniform(x0, bx1)
-        centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
-        X[centre > cut] -= bx1 - x1
-        X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+        if fails and rng.random() < SWAP_P:
+            _swap_large(inst, X, Y, V, rng)
+        _squeeze(inst, X, Y, V, bx1, x1, rng)
         if sep.separate(X, Y, V, x1, deadline, rng=rng):
             best = (inst.right_edge(X, V), X, Y, V)
             frac = min(MAX_SHRINK, frac * 1.5)
+            fails = 0
         else:
-            frac *= 0.5
+            fails += 1
+            frac *= SHRINK_BACKOFF
             if frac < MIN_SHRINK:
                 frac = MAX_SHRINK
     return best
