@@ -97,27 +97,34 @@ def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi
     no-fit polygon: 0 outside or on the boundary."""
     if tx <= bbox[p, 0] or tx >= bbox[p, 2] or ty <= bbox[p, 1] or ty >= bbox[p, 3]:
         return 0.0
+    # winding number first: most translations inside the box are outside the polygon
     wind = 0
+    for k in range(ring_lo[p], ring_hi[p]):
+        s = start[k]
+        m = count[k]
+        for e in range(m):
+            f = e + 1 if e + 1 < m else 0
+            ay = pts[s + e, 1]
+            by = pts[s + f, 1]
+            if ay <= ty:
+                if by > ty and (pts[s + f, 0] - pts[s + e, 0]) * (ty - ay) \
+                        - (by - ay) * (tx - pts[s + e, 0]) > 0.0:
+                    wind += 1
+            elif by <= ty and (pts[s + f, 0] - pts[s + e, 0]) * (ty - ay) \
+                    - (by - ay) * (tx - pts[s + e, 0]) < 0.0:
+                wind -= 1
+    if wind == 0:
+        return 0.0
     best = 1e300
     for k in range(ring_lo[p], ring_hi[p]):
         s = start[k]
         m = count[k]
         for e in range(m):
+            f = e + 1 if e + 1 < m else 0
             ax = pts[s + e, 0]
             ay = pts[s + e, 1]
-            f = e + 1
-            if f == m:
-                f = 0
-            bx = pts[s + f, 0]
-            by = pts[s + f, 1]
-            ex = bx - ax
-            ey = by - ay
-            cr = ex * (ty - ay) - ey * (tx - ax)
-            if ay <= ty:
-                if by > ty and cr > 0.0:
-                    wind += 1
-            elif by <= ty and cr < 0.0:
-                wind -= 1
+            ex = pts[s + f, 0] - ax
+            ey = pts[s + f, 1] - ay
             ll = ex * ex + ey * ey
             u = 0.0
             if ll > 0.0:
@@ -131,8 +138,6 @@ def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi
             d = dx * dx + dy * dy
             if d < best:
                 best = d
-    if wind == 0:
-        return 0.0
     return np.sqrt(best)
 
 

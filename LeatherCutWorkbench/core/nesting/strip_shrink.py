@@ -9,8 +9,10 @@ until the deadline, repeatedly
 2. runs the separator (:mod:`separation`: guided local search over the
    penetration depths of :mod:`overlap`) until no pair overlaps;
 3. on success keeps the layout as the new best, on failure goes back to the
-   best and tries a smaller shrink (1 % of the length down to 0.05 %, then
-   big steps again from another cut).
+   best, often with two large copies swapped, and tries a smaller shrink
+   (0.4 % of the length down to 0.02 %, then big steps again); the last
+   ``COMPRESSION_SHARE`` of the time only tries shrinks of 0.05 % to 0.002 %
+   (sparrow's exploration / compression split).
 
 Several worker processes (``options.workers``, default all cores up to 8)
 run this loop with their own random streams; the shortest strip wins.  The
@@ -45,9 +47,12 @@ from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 GRID_UNITS = 1.0e6
 #: share of the time budget the engine's own search gets before this phase (:func:`nest_strip`)
 SEARCH_SHARE = 0.25
-MAX_SHRINK = 0.01
-MIN_SHRINK = 0.0005
+MAX_SHRINK = 0.004
+MIN_SHRINK = 0.0002
 SHRINK_BACKOFF = 0.5
+COMPRESSION_SHARE = 0.2
+COMPRESS_MAX = 0.0005
+COMPRESS_MIN = 0.00002
 SWAP_P = 0.5
 
 
@@ -154,9 +159,13 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
     seed_rng(seed)
     x0 = inst.x0
     best = (inst.right_edge(X, V), X.copy(), Y.copy(), V.copy())
-    frac = MAX_SHRINK
+    frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
     fails = 0
+    squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
     while time.monotonic() < deadline:
+        if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
+            # compression: the last part of the time tries ever smaller shrinks
+            frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
         bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
         x1 = bx1 - frac * (bx1 - x0)
         if fails and rng.random() < SWAP_P:
@@ -164,13 +173,13 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
         _squeeze(inst, X, Y, V, bx1, x1, rng)
         if sep.separate(X, Y, V, x1, deadline, rng=rng):
             best = (inst.right_edge(X, V), X, Y, V)
-            frac = min(MAX_SHRINK, frac * 1.5)
+            frac = min(hi, frac * 1.5)
             fails = 0
         else:
             fails += 1
             frac *= SHRINK_BACKOFF
-            if frac < MIN_SHRINK:
-                frac = MAX_SHRINK
+            if frac < lo:
+                frac = hi
     return best
 
 
