@@ -13,7 +13,10 @@ hide, hide DXF layer convention), :mod:`nfp` (no-fit / inner-fit polygons),
 order and orientations, one process per core), :mod:`checker` (independent
 validity check), :mod:`esicup` (benchmark instance reader),
 :mod:`sparrow_engine` (spyrrow in a subprocess), :mod:`outputs` (layout
-JSON, DXF, SVG).
+JSON, DXF, SVG); strips: :mod:`strip_shrink` (shrink the strip and separate
+the overlaps until the budget ends), :mod:`separation` (guided local search
+over the weighted overlap), :mod:`overlap` (penetration depth from no-fit
+polygons, numba kernels).
 
 Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
 a placement the checker rejects is moved to ``unplaced`` with an error

@@ -25,6 +25,7 @@ on disk (``cache=True``).
 
 from __future__ import annotations
 
+import time
 from typing import List, Sequence
 
 import numpy as np
@@ -43,11 +44,16 @@ class PairTable:
     outer rings CCW, holes CW: the non-zero rule).  ``bbox[p]`` bounds them;
     a translation outside it cannot overlap."""
 
-    def __init__(self, variants: Sequence[Variant]):
+    def __init__(self, variants: Sequence[Variant], deadline: float = float("inf")):
         n = len(variants)
         self.n = n
+        #: False when ``deadline`` (``time.monotonic()``) passed before every pair was built
+        self.complete = True
         rings: List[List[np.ndarray]] = [[] for _ in range(n * n)]
         for a in range(n):
+            if time.monotonic() > deadline:
+                self.complete = False
+                break
             for b in range(a, n):
                 paths = pair_nfp(variants[a], variants[b])
                 if a != b and (variants[a].holes or variants[b].holes):

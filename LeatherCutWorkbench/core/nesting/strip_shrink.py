@@ -47,6 +47,9 @@ from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 GRID_UNITS = 1.0e6
 #: share of the time budget the engine's own search gets before this phase (:func:`nest_strip`)
 SEARCH_SHARE = 0.25
+#: the phase needs the no-fit polygon of every ordered pair of orientations: it
+#: skips jobs with more (e.g. 100 parts with free rotation every 30 degrees)
+MAX_PAIRS = 40000
 MAX_SHRINK = 0.004
 MIN_SHRINK = 0.0002
 SHRINK_BACKOFF = 0.5
@@ -201,9 +204,11 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
         return layout
     inst = _Instance(layout, parts, options)
-    if not inst.ok:
+    if not inst.ok or len(inst.variants) ** 2 > MAX_PAIRS:
         return layout
-    table = PairTable(inst.variants)
+    table = PairTable(inst.variants, deadline)
+    if not table.complete:
+        return layout
     sep = Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
                     inst.eps)
     sep.warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
