@@ -8,13 +8,15 @@ import time
 import numpy as np
 import pytest
 
+from LeatherCutWorkbench.core.errors import CancelledError
 from LeatherCutWorkbench.core.model import Container, Layout, Placement
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
 from LeatherCutWorkbench.core.nesting.engine import fill_metrics
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
-from LeatherCutWorkbench.core.nesting.strip_shrink import improve_strip
+from LeatherCutWorkbench.core.nesting.separation import Separator
+from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance, improve_strip
 
 from nest_shapes import frame, rect
 
@@ -47,6 +49,17 @@ def _loose_row(parts, opts, gap):
     return lay
 
 
+@pytest.fixture(scope="module", autouse=True)
+def compiled_kernels():
+    """Compile the numba kernels before the timed tests (the first compile on a
+    fresh checkout takes seconds, which would eat a test's deadline)."""
+    parts, opts = _fu()
+    inst = _Instance(_loose_row(parts, opts, gap=1.0), parts, opts)
+    tab = PairTable(inst.variants)
+    Separator(tab, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
+              inst.eps).warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+
+
 def test_penetration_depth_of_two_squares_is_the_shortest_separating_move():
     sq = rect("s", 10, 10)
     scale = 1000.0                         # grid units per mm
@@ -75,7 +88,7 @@ def test_engine_layout_is_never_made_invalid_or_longer():
     parts, opts = _fu()
     lay = nest(parts, opts)
     before = lay.metrics["strip_length_mm"]
-    new = improve_strip(lay, parts, opts, time.monotonic() + 2.0)
+    new = improve_strip(lay, parts, opts, time.monotonic() + 4.0)
     assert _valid(parts, new, opts) == []
     assert new.unplaced == [] and len(new.placements) == len(lay.placements)
     assert new.metrics["strip_length_mm"] <= before
@@ -88,7 +101,7 @@ def test_loose_layout_shrinks_a_lot_and_stays_valid_with_spacing_and_margin():
     loose = _loose_row(parts, opts, gap=3.0)
     assert _valid(parts, loose, opts) == []
     before = loose.metrics["strip_length_mm"]
-    new = improve_strip(loose, parts, opts, time.monotonic() + 3.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
     assert _valid(parts, new, opts) == []
     assert len(new.placements) == len(loose.placements)
     # one row of 12 copies is > 3x longer than a packed strip: expect far less than half
@@ -100,7 +113,7 @@ def test_parts_with_holes_can_take_a_copy_in_the_hole():
     parts = [frame("F", 60, 60, 8, q=2), rect("s", 30, 30, q=2, rotations=[0])]
     opts = NestOptions(container=ContainerSpec.strip(60), workers=1)
     loose = _loose_row(parts, opts, gap=5.0)
-    new = improve_strip(loose, parts, opts, time.monotonic() + 2.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
     assert _valid(parts, new, opts) == []
     # the frames need 120 mm side by side; the squares only fit without growing it in the holes
     assert new.metrics["strip_length_mm"] < 121.0
@@ -114,3 +127,16 @@ def test_other_containers_and_incomplete_layouts_come_back_unchanged():
     lay.unplaced.append((parts[0].id, 99))
     assert improve_strip(lay, parts, opts, time.monotonic() + 1.0) is lay
     assert np.isfinite(lay.metrics["strip_length_mm"])
+
+
+def test_two_workers_and_cancel():
+    parts, opts = _fu()
+    opts.workers = 2
+    loose = _loose_row(parts, opts, gap=2.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    assert new.metrics["strip_length_mm"] < 0.5 * loose.metrics["strip_length_mm"]
+    t0 = time.monotonic()
+    with pytest.raises(CancelledError):
+        improve_strip(loose, parts, opts, time.monotonic() + 30.0, progress=lambda f, m: False)
+    assert time.monotonic() - t0 < 10.0          # the workers stop at their next sweep

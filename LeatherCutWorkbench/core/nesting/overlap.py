@@ -97,7 +97,7 @@ class PairTable:
         return self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi, bbox) -> float:
     """Penetration depth (grid units) of translation (tx, ty) in pair ``p``'s
     no-fit polygon: 0 outside or on the boundary."""
@@ -147,7 +147,7 @@ def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi
     return np.sqrt(best)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def copy_penalty(i: int, vi: int, x: float, y: float, X, Y, V, W, nv: int, limit: float,
                  pts, start, count, ring_lo, ring_hi, bbox) -> float:
     """Weighted overlap of copy ``i`` as variant ``vi`` at (x, y) with every
@@ -165,7 +165,7 @@ def copy_penalty(i: int, vi: int, x: float, y: float, X, Y, V, W, nv: int, limit
     return total
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def overlap_matrix(X, Y, V, nv: int, pts, start, count, ring_lo, ring_hi, bbox):
     """Unweighted penetration depth of every pair of copies (symmetric, n x n)."""
     n = X.shape[0]

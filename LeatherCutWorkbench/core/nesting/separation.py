@@ -22,6 +22,7 @@ one unit): a copy inside it lies inside the container.
 
 from __future__ import annotations
 
+import threading
 import time
 from typing import Optional
 
@@ -47,7 +48,7 @@ def _clamp(v: float, lo: float, hi: float) -> float:
     return v
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
               pts, start, count, ring_lo, ring_hi, bbox):
     """Best place for copy ``i`` (see module doc): (x, y, variant, weighted
@@ -125,7 +126,7 @@ class Separator:
 
     def __init__(self, table: PairTable, cb: np.ndarray, choices, types: np.ndarray,
                  y0: float, y1: float, x0: float, eps: float, n_global: int = 50,
-                 n_local: int = 25):
+                 n_local: int = 25, stop: Optional[threading.Event] = None):
         self.table = table
         self.arrs = table.arrays()
         self.cb = cb
@@ -134,11 +135,13 @@ class Separator:
         self.x0, self.y0, self.y1 = x0, y0, y1
         self.n_global, self.n_local = n_global, n_local
         self.eps = eps
+        self.stop = stop or threading.Event()      # set: give up at the next sweep
         n = len(types)
         self.W = np.ones((n, n))
 
     def warm_up(self, X, Y, V, x1: float) -> None:
-        """Compile (or load) the kernels once, before worker processes fork."""
+        """Compile (or load from numba's disk cache) every kernel once."""
+        seed_rng(0)
         self.overlaps(X, Y, V)
         move_copy(0, X.copy(), Y.copy(), V.copy(), self.W[0], self.choices[self.types[0]], self.cb,
                   self.x0, x1, self.y0, self.y1, self.table.n, 1, 1, *self.arrs)
@@ -161,7 +164,7 @@ class Separator:
         strike = 0
         W = self.W
         nv = self.table.n
-        while time.monotonic() < deadline:
+        while time.monotonic() < deadline and not self.stop.is_set():
             hit = np.nonzero((od > self.eps).any(axis=1))[0]
             rng.shuffle(hit)
             for i in hit:

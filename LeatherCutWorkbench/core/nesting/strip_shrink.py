@@ -14,7 +14,7 @@ until the deadline, repeatedly
    ``COMPRESSION_SHARE`` of the time only tries shrinks of 0.05 % to 0.002 %
    (sparrow's exploration / compression split).
 
-Several worker processes (``options.workers``, default all cores up to 8)
+Several worker threads (``options.workers``, default all cores up to 8)
 run this loop with their own random streams; the shortest strip wins.  The
 result is re-checked by the independent :func:`checker.check_layout`; if it
 is not valid or not shorter, the input layout is returned unchanged, so the
@@ -27,14 +27,14 @@ from __future__ import annotations
 
 import copy
 import dataclasses
-import multiprocessing as mp
 import os
+import threading
 import time
+from concurrent.futures import ThreadPoolExecutor, wait
 from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..errors import CancelledError
 from ..model import Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .checker import check_layout
@@ -165,7 +165,7 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
     frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
     fails = 0
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
-    while time.monotonic() < deadline:
+    while time.monotonic() < deadline and not sep.stop.is_set():
         if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
             # compression: the last part of the time tries ever smaller shrinks
             frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
@@ -186,19 +186,15 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
     return best
 
 
-def _worker(args):
-    inst, sep, deadline, seed = args
-    return _shrink_loop(inst, sep, inst.X.copy(), inst.Y.copy(), inst.V.copy(), deadline, seed)
-
-
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
                   deadline: float, progress: Optional[ProgressFn] = None) -> Layout:
     """A valid strip layout no longer than ``layout`` (see module doc).
 
     ``layout`` is a strip layout of ``parts`` under ``options``; ``deadline``
     a ``time.monotonic()`` value.  Another container kind, an incomplete or
-    invalid layout, or too little time return ``layout`` itself.  ``progress``
-    is polled about every 0.1 s (CancelledError when it asks to stop)."""
+    invalid layout, more than ``MAX_PAIRS`` orientation pairs or too little
+    time return ``layout`` itself.  ``progress`` is polled about every 0.1 s
+    (CancelledError when it asks to stop; the workers stop within a sweep)."""
     if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2:
         return layout
     if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
@@ -209,31 +205,26 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     table = PairTable(inst.variants, deadline)
     if not table.complete:
         return layout
-    sep = Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
-                    inst.eps)
-    sep.warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
     n = options.workers or max(1, min(os.cpu_count() or 1, 8))
-    jobs = [(inst, sep, deadline, options.seed * 7919 + k) for k in range(n)]
+    stop = threading.Event()
+    seps = [Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
+                      inst.eps, stop=stop) for _ in range(n)]
+    seps[0].warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+    # threads, not processes: the kernels release the GIL (nogil), so the workers
+    # run in parallel without pickling, forking or FreeCAD's stdin quirks
     t0 = time.monotonic()
     span = max(deadline - t0, 1e-9)
-    msg = f"compacting the strip ({n} workers)"
-    if n == 1 and progress is None:
-        results = [_worker(jobs[0])]
-    else:
-        ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
-        pool = ctx.Pool(n)
+    with ThreadPoolExecutor(n) as ex:
+        futs = [ex.submit(_shrink_loop, inst, sep, inst.X.copy(), inst.Y.copy(), inst.V.copy(),
+                          deadline, options.seed * 7919 + k) for k, sep in enumerate(seps)]
         try:
-            pending = pool.map_async(_worker, jobs)
-            while not pending.ready():
-                report(progress, 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / span), msg)
-                pending.wait(0.1)
-            results = pending.get()
-        except CancelledError:
-            pool.terminate()
-            raise
+            while not all(f.done() for f in futs):
+                report(progress, 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / span),
+                       f"compacting the strip ({n} workers)")
+                wait(futs, timeout=0.1)
         finally:
-            pool.close()
-            pool.join()
+            stop.set()
+        results = [f.result() for f in futs]
     best = min(results, key=lambda r: r[0])
     return _accept(layout, parts, options, inst.to_layout(layout, best[1], best[2], best[3]))
 
