@@ -149,12 +149,19 @@ def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi
 
 @njit(cache=True, nogil=True)
 def copy_penalty(i: int, vi: int, x: float, y: float, X, Y, V, W, nv: int, limit: float,
+                 order, keys, lo: float, hi: float,
                  pts, start, count, ring_lo, ring_hi, bbox) -> float:
-    """Weighted overlap of copy ``i`` as variant ``vi`` at (x, y) with every
-    other copy j (variant V[j] at X[j], Y[j]): sum of W[j] x depth.  Stops
-    early once the sum exceeds ``limit`` (the best candidate so far)."""
+    """Weighted overlap of copy ``i`` as variant ``vi`` at (x, y) with the other
+    copies j (variant V[j] at X[j], Y[j]): sum of W[j] x depth.  Broad phase:
+    ``order`` sorts the copies by ``keys`` (their left edges); only those with
+    a key in [lo, hi] can reach the candidate.  Stops early once the sum
+    exceeds ``limit`` (the best candidate so far)."""
     total = 0.0
-    for j in range(X.shape[0]):
+    k = np.searchsorted(keys, lo)
+    end = np.searchsorted(keys, hi, side="right")
+    while k < end:
+        j = order[k]
+        k += 1
         if j == i:
             continue
         d = pair_depth(X[j] - x, Y[j] - y, vi * nv + V[j], pts, start, count, ring_lo, ring_hi, bbox)

@@ -49,15 +49,22 @@ def _clamp(v: float, lo: float, hi: float) -> float:
 
 
 @njit(cache=True, nogil=True)
-def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
+def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local, pad, wmax,
               pts, start, count, ring_lo, ring_hi, bbox):
     """Best place for copy ``i`` (see module doc): (x, y, variant, weighted
     penalty).  ``choices`` are the variants its type allows, ``cb`` the core
-    bounding boxes per variant, (x0, y0)-(x1, y1) the rectangle."""
+    bounding boxes per variant, (x0, y0)-(x1, y1) the rectangle; ``pad``
+    bounds how far an inflated outline reaches beyond its core box, ``wmax``
+    the widest core box (both for the broad phase)."""
+    keys = X + cb[V, 0]
+    order = np.argsort(keys)
+    keys = keys[order]
     bv = V[i]
     bx = X[i]
     by = Y[i]
-    best = copy_penalty(i, bv, bx, by, X, Y, V, W, nv, 1e300, pts, start, count, ring_lo, ring_hi, bbox)
+    best = copy_penalty(i, bv, bx, by, X, Y, V, W, nv, 1e300, order, keys,
+                        bx + cb[bv, 0] - wmax - 2 * pad, bx + cb[bv, 2] + 2 * pad,
+                        pts, start, count, ring_lo, ring_hi, bbox)
     if best <= 0.0:
         return bx, by, bv, best
     nc = choices.shape[0]
@@ -81,7 +88,9 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
             r = 0.5 if s % 2 == 0 else 0.1
             x = _clamp(X[i] + (np.random.random() - 0.5) * 2.0 * r * w, lx, hx)
             y = _clamp(Y[i] + (np.random.random() - 0.5) * 2.0 * r * h, ly, hy)
-        c = copy_penalty(i, v, x, y, X, Y, V, W, nv, best, pts, start, count, ring_lo, ring_hi, bbox)
+        c = copy_penalty(i, v, x, y, X, Y, V, W, nv, best, order, keys,
+                         x + cb[v, 0] - wmax - 2 * pad, x + cb[v, 2] + 2 * pad,
+                         pts, start, count, ring_lo, ring_hi, bbox)
         if c < best:
             best, bx, by, bv = c, x, y, v
             if best <= 0.0:
@@ -103,8 +112,9 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
                 x, y = bx, _clamp(by + sy, ly, hy)
             else:
                 x, y = bx, _clamp(by - sy, ly, hy)
-            c = copy_penalty(i, bv, x, y, X, Y, V, W, nv, best, pts, start, count, ring_lo,
-                             ring_hi, bbox)
+            c = copy_penalty(i, bv, x, y, X, Y, V, W, nv, best, order, keys,
+                             x + cb[bv, 0] - wmax - 2 * pad, x + cb[bv, 2] + 2 * pad,
+                             pts, start, count, ring_lo, ring_hi, bbox)
             if c < best:
                 best, bx, by = c, x, y
                 improved = True
@@ -122,11 +132,13 @@ class Separator:
     changed in place; ``choices[t]`` lists the variants of type t, ``types[i]``
     the type of copy i, ``cb`` the core bounding boxes per variant.  A pair
     overlaps when its penetration depth exceeds ``eps`` grid units (the
-    caller keeps that far below the checker's tolerance)."""
+    caller keeps that far below the checker's tolerance); ``pad`` bounds how
+    far a variant's inflated outline reaches beyond its core box."""
 
     def __init__(self, table: PairTable, cb: np.ndarray, choices, types: np.ndarray,
                  y0: float, y1: float, x0: float, eps: float, n_global: int = 50,
-                 n_local: int = 25, stop: Optional[threading.Event] = None):
+                 n_local: int = 25, stop: Optional[threading.Event] = None,
+                 pad: float = 0.0):
         self.table = table
         self.arrs = table.arrays()
         self.cb = cb
@@ -135,6 +147,8 @@ class Separator:
         self.x0, self.y0, self.y1 = x0, y0, y1
         self.n_global, self.n_local = n_global, n_local
         self.eps = eps
+        self.pad = pad + 2.0
+        self.wmax = float((cb[:, 2] - cb[:, 0]).max())
         self.stop = stop or threading.Event()      # set: give up at the next sweep
         n = len(types)
         self.W = np.ones((n, n))
@@ -144,7 +158,8 @@ class Separator:
         seed_rng(0)
         self.overlaps(X, Y, V)
         move_copy(0, X.copy(), Y.copy(), V.copy(), self.W[0], self.choices[self.types[0]], self.cb,
-                  self.x0, x1, self.y0, self.y1, self.table.n, 1, 1, *self.arrs)
+                  self.x0, x1, self.y0, self.y1, self.table.n, 1, 1, self.pad, self.wmax,
+                  *self.arrs)
 
     def overlaps(self, X, Y, V) -> np.ndarray:
         return overlap_matrix(X, Y, V, self.table.n, *self.arrs)
@@ -170,7 +185,7 @@ class Separator:
             for i in hit:
                 x, y, v, _ = move_copy(int(i), X, Y, V, W[i], self.choices[self.types[i]], self.cb,
                                        self.x0, x1, self.y0, self.y1, nv, self.n_global,
-                                       self.n_local, *self.arrs)
+                                       self.n_local, self.pad, self.wmax, *self.arrs)
                 X[i], Y[i], V[i] = x, y, v
             od = self.overlaps(X, Y, V)
             coll = od > self.eps

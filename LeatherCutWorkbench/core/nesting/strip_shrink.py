@@ -15,7 +15,8 @@ until the deadline, repeatedly
    (sparrow's exploration / compression split).
 
 Several worker threads (``options.workers``, default all cores up to 8)
-run this loop with their own random streams; the shortest strip wins.  The
+run this loop with their own random streams and share the best layout: each
+shrink starts from the shortest strip any of them has found.  The
 result is re-checked by the independent :func:`checker.check_layout`; if it
 is not valid or not shorter, the input layout is returned unchanged, so the
 phase can never make a layout worse.
@@ -76,6 +77,8 @@ class _Instance:
         self.choices = [[v.index for v in self.variants if v.type_index == t] for t in range(len(pieces))]
         core = [np.asarray(v.core, dtype=np.float64) for v in self.variants]
         self.cb = np.array([[c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max()] for c in core])
+        ob = np.array([v.bbox for v in self.variants], dtype=np.float64)
+        self.pad = float(np.abs(ob - self.cb).max())       # inflated outline beyond the core box
         key = {t.key: k for k, t in enumerate(pieces)}
         m = options.margin
         self.x0, self.y0, self.y1 = m * s, m * s, (spec.height - m) * s
@@ -156,12 +159,31 @@ def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
     Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
 
 
-def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed: int):
+class _Best:
+    """The shortest valid layout any worker has found, (x1, X, Y, V); shared by
+    the worker threads, so each next shrink starts from the best of all (the
+    arrays are never changed once offered)."""
+
+    def __init__(self, state):
+        self._lock = threading.Lock()
+        self._state = state
+
+    def offer(self, state) -> None:
+        with self._lock:
+            if state[0] < self._state[0]:
+                self._state = state
+
+    def get(self):
+        with self._lock:
+            return self._state
+
+
+def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float, seed: int):
     """One worker's shrink-and-separate loop (see module doc): best (x1, X, Y, V)."""
     rng = np.random.default_rng(seed)
     seed_rng(seed)
     x0 = inst.x0
-    best = (inst.right_edge(X, V), X.copy(), Y.copy(), V.copy())
+    best = shared.get()
     frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
     fails = 0
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
@@ -169,6 +191,9 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
         if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
             # compression: the last part of the time tries ever smaller shrinks
             frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
+        other = shared.get()
+        if other[0] < best[0]:
+            best = other                  # another worker got further: go on from there
         bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
         x1 = bx1 - frac * (bx1 - x0)
         if fails and rng.random() < SWAP_P:
@@ -176,6 +201,7 @@ def _shrink_loop(inst: _Instance, sep: Separator, X, Y, V, deadline: float, seed
         _squeeze(inst, X, Y, V, bx1, x1, rng)
         if sep.separate(X, Y, V, x1, deadline, rng=rng):
             best = (inst.right_edge(X, V), X, Y, V)
+            shared.offer(best)
             frac = min(hi, frac * 1.5)
             fails = 0
         else:
@@ -208,15 +234,16 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     n = options.workers or max(1, min(os.cpu_count() or 1, 8))
     stop = threading.Event()
     seps = [Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
-                      inst.eps, stop=stop) for _ in range(n)]
+                      inst.eps, stop=stop, pad=inst.pad) for _ in range(n)]
     seps[0].warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
     # threads, not processes: the kernels release the GIL (nogil), so the workers
     # run in parallel without pickling, forking or FreeCAD's stdin quirks
     t0 = time.monotonic()
     span = max(deadline - t0, 1e-9)
     with ThreadPoolExecutor(n) as ex:
-        futs = [ex.submit(_shrink_loop, inst, sep, inst.X.copy(), inst.Y.copy(), inst.V.copy(),
-                          deadline, options.seed * 7919 + k) for k, sep in enumerate(seps)]
+        shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+        futs = [ex.submit(_shrink_loop, inst, sep, shared, deadline, options.seed * 7919 + k)
+                for k, sep in enumerate(seps)]
         try:
             while not all(f.done() for f in futs):
                 report(progress, 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / span),
