@@ -5,7 +5,7 @@ instances, same time budget, one after the other in the same run.
     .venv/bin/python bench/bench_strip.py [--times 10,60] [--seed 1] [--sparrow-seed 42]
                                           [--instances albano,fu,shapes0,shirts] [--workers 2]
 
-"own+phase" is :func:`strip_shrink.nest_strip`: the engine's search for
+"own+phase" is :func:`strip_shrink.nest_compacted`: the engine's search for
 SEARCH_SHARE of the budget, then the overlap-minimisation phase until the
 budget ends.  Every layout is re-checked with the independent checker (no
 overlap, inside the strip, allowed rotations only, every copy placed) before
@@ -26,7 +26,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest  # noqa: E402
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup  # noqa: E402
-from LeatherCutWorkbench.core.nesting.strip_shrink import nest_strip  # noqa: E402
+from LeatherCutWorkbench.core.nesting.strip_shrink import nest_compacted  # noqa: E402
 
 from bench_nest import instance_path  # noqa: E402
 
@@ -42,7 +42,7 @@ def run(name: str, engine: str, budget: float, seed: int, workers: int):
     opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=budget,
                        seed=seed, workers=workers, engine=engine)
     c0, t0 = _cpu(), time.monotonic()
-    lay = nest_strip(inst.parts, opts) if engine == "own" else nest(inst.parts, opts)
+    lay = nest_compacted(inst.parts, opts) if engine == "own" else nest(inst.parts, opts)
     wall, cpu = time.monotonic() - t0, _cpu() - c0
     ok = not check_layout(inst.parts, lay) and not lay.unplaced
     return 100.0 * lay.metrics["density"], lay.metrics["strip_length_mm"], wall, cpu, ok

@@ -16,7 +16,7 @@ from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
 from LeatherCutWorkbench.core.nesting.separation import Separator
-from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance, improve_strip
+from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance, improve_last_sheet, improve_strip
 
 from nest_shapes import frame, rect
 
@@ -140,3 +140,20 @@ def test_two_workers_and_cancel():
     with pytest.raises(CancelledError):
         improve_strip(loose, parts, opts, time.monotonic() + 30.0, progress=lambda f, m: False)
     assert time.monotonic() - t0 < 10.0          # the workers stop at their next sweep
+
+
+def test_last_sheet_gets_shorter_and_the_first_sheet_stays():
+    parts = [rect("a", 48, 48, q=2, rotations=[0]), rect("b", 20, 20, q=4, rotations=[0])]
+    opts = NestOptions(container=ContainerSpec.sheet(100, 50), workers=1)
+    pls = [Placement(part_id="a", copy=k, container="sheet1", x=50.0 * k, y=0.0) for k in range(2)]
+    pls += [Placement(part_id="b", copy=k, container="sheet2", x=25.0 * k, y=0.0) for k in range(4)]
+    sheets = [Container(id=f"sheet{k}", kind="sheet", outline=[(0, 0), (100, 0), (100, 50), (0, 50)])
+              for k in (1, 2)]
+    lay = Layout(containers=sheets, placements=pls)
+    fill_metrics(parts, lay, opts)
+    assert _valid(parts, lay, opts) == []
+    new = improve_last_sheet(lay, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    per = {c["id"]: c for c in new.metrics["per_container"]}
+    assert per["sheet2"]["used_length_mm"] < 60.0          # was 95: two columns of two fit in 40
+    assert [(p.x, p.y) for p in new.placements if p.container == "sheet1"] == [(0.0, 0.0), (50.0, 0.0)]

@@ -36,17 +36,17 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..model import Layout, Part, Placement
+from ..model import Container, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .checker import check_layout
-from .options import NestOptions
+from .options import ContainerSpec, NestOptions
 from .overlap import PairTable
 from .separation import Separator, seed_rng
 from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 
 #: the longest container or part dimension spans this many grid units
 GRID_UNITS = 1.0e6
-#: share of the time budget the engine's own search gets before this phase (:func:`nest_strip`)
+#: share of the time budget the engine's own search gets before this phase (:func:`nest_compacted`)
 SEARCH_SHARE = 0.25
 #: the phase needs the no-fit polygon of every ordered pair of orientations: it
 #: skips jobs with more (e.g. 100 parts with free rotation every 30 degrees)
@@ -256,19 +256,48 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     return _accept(layout, parts, options, inst.to_layout(layout, best[1], best[2], best[3]))
 
 
-def nest_strip(parts: Sequence[Part], options: NestOptions,
-               progress: Optional[ProgressFn] = None) -> Layout:
-    """The own engine on a strip: its search for ``SEARCH_SHARE`` of the time
-    budget, then :func:`improve_strip` until the budget ends.  With
-    ``max_evaluations`` (a reproducible run) or no budget only the search runs:
-    this phase is driven by the clock."""
+def improve_last_sheet(layout: Layout, parts: Sequence[Part], options: NestOptions,
+                       deadline: float, progress: Optional[ProgressFn] = None) -> Layout:
+    """Sheets: shorten the used length (along X) of the last sheet with the
+    strip phase (the sheet's height is the strip's width); the other sheets
+    stay as they are.  Returns ``layout`` unless the checker passes a shorter
+    last sheet."""
+    if options.container.kind != "sheet" or not layout.containers or layout.unplaced:
+        return layout
+    from .engine import fill_metrics
+    last = layout.containers[-1].id
+    strip = dataclasses.replace(options, container=ContainerSpec.strip(options.container.height))
+    sub = Layout(containers=[Container(id="strip", kind="strip", outline=[])],
+                 placements=[dataclasses.replace(pl, container="strip")
+                             for pl in layout.placements if pl.container == last])
+    fill_metrics(parts, sub, strip)
+    better = improve_strip(sub, parts, strip, deadline, progress)
+    if better is sub:
+        return layout
+    new = copy.deepcopy(layout)
+    new.placements = [pl for pl in new.placements if pl.container != last] + \
+        [dataclasses.replace(pl, container=last) for pl in better.placements]
+    fill_metrics(parts, new, options)
+    return layout if _problems(parts, new, options) else new
+
+
+def nest_compacted(parts: Sequence[Part], options: NestOptions,
+                   progress: Optional[ProgressFn] = None) -> Layout:
+    """The own engine with this phase: on a strip (or sheets) its search runs
+    for ``SEARCH_SHARE`` of the time budget, then :func:`improve_strip` (or
+    :func:`improve_last_sheet`) until the budget ends.  Hides, a reproducible
+    run (``max_evaluations``) or no budget get the engine alone: this phase is
+    driven by the clock."""
     from .engine import run_own
     t0 = time.monotonic()
-    if options.max_evaluations is not None or options.time_budget <= 0:
+    kind = options.container.kind
+    if kind not in ("strip", "sheet") or options.max_evaluations is not None \
+            or options.time_budget <= 0:
         return run_own(parts, options, progress)
     first = dataclasses.replace(options, time_budget=options.time_budget * SEARCH_SHARE)
     layout = run_own(parts, first, progress)
-    better = improve_strip(layout, parts, options, t0 + options.time_budget, progress)
+    phase = improve_strip if kind == "strip" else improve_last_sheet
+    better = phase(layout, parts, options, t0 + options.time_budget, progress)
     better.metrics["time_s"] = round(time.monotonic() - t0, 3)
     return better
 
