@@ -16,7 +16,8 @@ from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
 from LeatherCutWorkbench.core.nesting.separation import Separator
-from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance, improve_last_sheet, improve_strip
+from LeatherCutWorkbench.core.nesting.strip_shrink import (_Instance, improve_last_sheet, improve_strip,
+                                                         nest_compacted)
 
 from nest_shapes import frame, rect
 
@@ -157,3 +158,12 @@ def test_last_sheet_gets_shorter_and_the_first_sheet_stays():
     per = {c["id"]: c for c in new.metrics["per_container"]}
     assert per["sheet2"]["used_length_mm"] < 60.0          # was 95: two columns of two fit in 40
     assert [(p.x, p.y) for p in new.placements if p.container == "sheet1"] == [(0.0, 0.0), (50.0, 0.0)]
+
+
+def test_nest_compacted_on_sheets_keeps_the_sheet_count_and_is_valid():
+    parts = [rect("a", 60, 40, q=7, rotations=[0, 90])]
+    opts = NestOptions(container=ContainerSpec.sheet(130, 90), time_budget=3.0, workers=1)
+    lay = nest_compacted(parts, opts)
+    assert _valid(parts, lay, opts) == [] and lay.unplaced == []
+    assert lay.metrics["sheets"] == 2                 # 4 per sheet at most
+    assert lay.metrics["time_s"] <= 3.0 + 0.1 * 3.0 + 1.0

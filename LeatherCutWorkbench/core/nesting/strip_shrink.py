@@ -48,6 +48,9 @@ from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 GRID_UNITS = 1.0e6
 #: share of the time budget the engine's own search gets before this phase (:func:`nest_compacted`)
 SEARCH_SHARE = 0.25
+#: on sheets the engine's search decides the number of sheets (the phase only
+#: shortens the last one), so it keeps most of the budget
+SHEET_SEARCH_SHARE = 0.75
 #: the phase needs the no-fit polygon of every ordered pair of orientations: it
 #: skips jobs with more (e.g. 100 parts with free rotation every 30 degrees)
 MAX_PAIRS = 40000
@@ -283,9 +286,9 @@ def improve_last_sheet(layout: Layout, parts: Sequence[Part], options: NestOptio
 
 def nest_compacted(parts: Sequence[Part], options: NestOptions,
                    progress: Optional[ProgressFn] = None) -> Layout:
-    """The own engine with this phase: on a strip (or sheets) its search runs
-    for ``SEARCH_SHARE`` of the time budget, then :func:`improve_strip` (or
-    :func:`improve_last_sheet`) until the budget ends.  Hides, a reproducible
+    """The own engine with this phase: on a strip its search runs for
+    ``SEARCH_SHARE`` of the time budget (sheets: ``SHEET_SEARCH_SHARE``), then
+    :func:`improve_strip` (:func:`improve_last_sheet`) until the budget ends.  Hides, a reproducible
     run (``max_evaluations``) or no budget get the engine alone: this phase is
     driven by the clock."""
     from .engine import run_own
@@ -294,7 +297,8 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     if kind not in ("strip", "sheet") or options.max_evaluations is not None \
             or options.time_budget <= 0:
         return run_own(parts, options, progress)
-    first = dataclasses.replace(options, time_budget=options.time_budget * SEARCH_SHARE)
+    share = SEARCH_SHARE if kind == "strip" else SHEET_SEARCH_SHARE
+    first = dataclasses.replace(options, time_budget=options.time_budget * share)
     layout = run_own(parts, first, progress)
     phase = improve_strip if kind == "strip" else improve_last_sheet
     better = phase(layout, parts, options, t0 + options.time_budget, progress)
