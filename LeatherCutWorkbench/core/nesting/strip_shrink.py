@@ -57,6 +57,8 @@ MAX_PAIRS = 40000
 MAX_SHRINK = 0.004
 MIN_SHRINK = 0.0002
 SHRINK_BACKOFF = 0.5
+#: overlap-free layouts each worker keeps for the final check
+KEEP = 6
 COMPRESSION_SHARE = 0.2
 COMPRESS_MAX = 0.0005
 COMPRESS_MIN = 0.00002
@@ -182,13 +184,15 @@ class _Best:
 
 
 def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float, seed: int):
-    """One worker's shrink-and-separate loop (see module doc): best (x1, X, Y, V)."""
+    """One worker's shrink-and-separate loop (see module doc): its last ``KEEP``
+    overlap-free layouts (x1, X, Y, V), shortest last."""
     rng = np.random.default_rng(seed)
     seed_rng(seed)
     x0 = inst.x0
     best = shared.get()
     frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
     fails = 0
+    found: list = []
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
     while time.monotonic() < deadline and not sep.stop.is_set():
         if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
@@ -205,6 +209,7 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
         if sep.separate(X, Y, V, x1, deadline, rng=rng):
             best = (inst.right_edge(X, V), X, Y, V)
             shared.offer(best)
+            found = (found + [best])[-KEEP:]
             frac = min(hi, frac * 1.5)
             fails = 0
         else:
@@ -212,7 +217,7 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
             frac *= SHRINK_BACKOFF
             if frac < lo:
                 frac = hi
-    return best
+    return found
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
@@ -254,9 +259,15 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
                 wait(futs, timeout=0.1)
         finally:
             stop.set()
-        results = [f.result() for f in futs]
-    best = min(results, key=lambda r: r[0])
-    return _accept(layout, parts, options, inst.to_layout(layout, best[1], best[2], best[3]))
+        found = sorted((st for f in futs for st in f.result()), key=lambda st: st[0])
+    # the shortest layout the checker passes (the penalty model is exact up to
+    # rounding; the checker has the last word and a shorter rejected layout
+    # falls back to the next one)
+    for st in found[:KEEP]:
+        new = _accept(layout, parts, options, inst.to_layout(layout, st[1], st[2], st[3]))
+        if new is not layout:
+            return new
+    return layout
 
 
 def improve_last_sheet(layout: Layout, parts: Sequence[Part], options: NestOptions,
