@@ -167,3 +167,19 @@ def test_nest_compacted_on_sheets_keeps_the_sheet_count_and_is_valid():
     assert _valid(parts, lay, opts) == [] and lay.unplaced == []
     assert lay.metrics["sheets"] == 2                 # 4 per sheet at most
     assert lay.metrics["time_s"] <= 3.0 + 0.1 * 3.0 + 1.0
+
+
+def test_inflated_outlines_keep_half_the_spacing_at_corners():
+    # pyclipper gives a 90-degree round join one chord; it cut the corner to 0.212 mm
+    # of a 0.25 mm half gap, and the separator put two corners 0.49 mm apart
+    from shapely.geometry import Polygon
+    from LeatherCutWorkbench.core.nesting.shapes import transform_ring
+    parts = [rect("r", 5, 9, rotations=[0, 90])]
+    opts = NestOptions(container=ContainerSpec.strip(20), spacing=0.5, workers=1)
+    loose = _loose_row(parts, opts, gap=1.0)
+    inst = _Instance(loose, parts, opts)
+    for v in inst.variants:
+        true = Polygon(transform_ring(inst.pieces[0].outer, v.angle, v.mirrored))
+        grown = Polygon(np.asarray(v.outer, dtype=float) / inst.scale)
+        assert grown.contains(true)
+        assert true.exterior.distance(grown.exterior) >= 0.25

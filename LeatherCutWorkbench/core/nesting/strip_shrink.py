@@ -78,7 +78,15 @@ class _Instance:
         length = float(layout.metrics.get("strip_length_mm", 0.0))
         self.scale = s = max(GRID_UNITS / max(max(dims + [length]), 1e-9), 10.0 / options.tolerance)
         self.pieces = pieces
-        self.variants = make_variants(pieces, s, options.spacing / 2.0, options.chord_tol)
+        half_gap = options.spacing / 2.0
+        if half_gap > 0:
+            # make_variants allows one arc tolerance of sag for the round joins of the
+            # spacing offset, but pyclipper rounds the number of chord steps, so a
+            # 90-degree corner may get one chord and sag ~2.25 x that tolerance (the
+            # separator finds such corner-to-corner contacts): grow by the rest
+            join_tol = max([options.chord_tol, 0.01 * half_gap] + [t.tol for t in pieces])
+            half_gap += 1.5 * join_tol
+        self.variants = make_variants(pieces, s, half_gap, options.chord_tol)
         self.choices = [[v.index for v in self.variants if v.type_index == t] for t in range(len(pieces))]
         core = [np.asarray(v.core, dtype=np.float64) for v in self.variants]
         self.cb = np.array([[c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max()] for c in core])
