@@ -40,8 +40,11 @@ from ..model import Container, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .checker import check_layout
 from .options import ContainerSpec, NestOptions
-from .overlap import PairTable
-from .separation import Separator, seed_rng
+try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
+    from .overlap import PairTable
+    from .separation import Separator, seed_rng
+except ImportError:       # pragma: no cover - the project's venv always has numba
+    PairTable = Separator = seed_rng = None  # type: ignore[assignment,misc]
 from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 
 #: the longest container or part dimension spans this many grid units
@@ -237,7 +240,8 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     invalid layout, more than ``MAX_PAIRS`` orientation pairs or too little
     time return ``layout`` itself.  ``progress`` is polled about every 0.1 s
     (CancelledError when it asks to stop; the workers stop within a sweep)."""
-    if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2:
+    if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2 \
+            or PairTable is None:
         return layout
     if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
         return layout
@@ -309,12 +313,12 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     ``SEARCH_SHARE`` of the time budget (sheets: ``SHEET_SEARCH_SHARE``), then
     :func:`improve_strip` (:func:`improve_last_sheet`) until the budget ends.  Hides, a reproducible
     run (``max_evaluations``) or no budget get the engine alone: this phase is
-    driven by the clock."""
+    driven by the clock.  Without numba the engine also runs alone."""
     from .engine import run_own
     t0 = time.monotonic()
     kind = options.container.kind
     if kind not in ("strip", "sheet") or options.max_evaluations is not None \
-            or options.time_budget <= 0:
+            or options.time_budget <= 0 or PairTable is None:
         return run_own(parts, options, progress)
     share = SEARCH_SHARE if kind == "strip" else SHEET_SEARCH_SHARE
     first = dataclasses.replace(options, time_budget=options.time_budget * share)
