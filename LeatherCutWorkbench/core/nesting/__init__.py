@@ -15,7 +15,10 @@ order and orientations, one process per core; time budget in :class:`search.Budg
 :mod:`checker` (independent validity check), :mod:`esicup` (benchmark
 instance reader: strips, and hides with quality zones),
 :mod:`sparrow_engine` (spyrrow in a subprocess), :mod:`outputs` (layout
-JSON, DXF, SVG, remnant hides).
+JSON, DXF, SVG, remnant hides); strips: :mod:`strip_shrink` (shrink the strip and separate
+the overlaps until the budget ends), :mod:`separation` (guided local search
+over the weighted overlap), :mod:`overlap` (penetration depth from no-fit
+polygons, numba kernels).
 
 Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
 a placement the checker rejects is moved to ``unplaced`` with an error
@@ -65,8 +68,8 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
         from .sparrow_engine import run_sparrow
         layout = run_sparrow(active, options, progress)
     else:
-        from .engine import run_own
-        layout = run_own(active, options, progress, on_best, stop)
+        from .strip_shrink import nest_compacted     # the engine, then the strip phase
+        layout = nest_compacted(active, options, progress, on_best, stop)
     report(progress, 0.99, "checking the layout")
     problems = check_layout(active, layout, spacing=options.spacing, margin=options.margin,
                             tol=options.tolerance, chord_tol=options.chord_tol,

@@ -1,0 +1,362 @@
+"""Strip improvement phase: shrink the strip, then separate the overlaps.
+
+:func:`improve_strip` takes a valid strip layout (the engine's best) and,
+until the deadline, repeatedly
+
+1. closes the strip a little shorter than the best valid layout: the copies
+   right of a random vertical cut move left by the difference (sparrow's
+   shrink), everything is pushed back inside, which creates overlaps;
+2. runs the separator (:mod:`separation`: guided local search over the
+   penetration depths of :mod:`overlap`) until no pair overlaps;
+3. on success keeps the layout as the new best, on failure goes back to the
+   best, often with two large copies swapped, and tries a smaller shrink
+   (0.4 % of the length down to 0.02 %, then big steps again); the last
+   ``COMPRESSION_SHARE`` of the time only tries shrinks of 0.05 % to 0.002 %
+   (sparrow's exploration / compression split).
+
+Several worker threads (``options.workers``, default all cores up to 8)
+run this loop with their own random streams and share the best layout: each
+shrink starts from the shortest strip any of them has found.  The
+result is re-checked by the independent :func:`checker.check_layout`; if it
+is not valid or not shorter, the input layout is returned unchanged, so the
+phase can never make a layout worse.
+
+Lengths: mm in the :class:`Layout`, the engine's integer grid inside.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import os
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor, wait
+from typing import Callable, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ..model import Container, Layout, Part, Placement
+from ..progress import ProgressFn, report
+from .checker import check_layout
+from .options import ContainerSpec, NestOptions
+try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
+    from .overlap import PairTable
+    from .separation import Separator, seed_rng
+except ImportError:       # pragma: no cover - the project's venv always has numba
+    PairTable = Separator = seed_rng = None  # type: ignore[assignment,misc]
+from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
+
+#: the longest container or part dimension spans this many grid units
+GRID_UNITS = 1.0e6
+#: share of the time budget the engine's own search gets before this phase (:func:`nest_compacted`)
+SEARCH_SHARE = 0.25
+#: on sheets the engine's search decides the number of sheets (the phase only
+#: shortens the last one), so it keeps most of the budget
+SHEET_SEARCH_SHARE = 0.75
+#: the phase needs the no-fit polygon of every ordered pair of orientations: it
+#: skips jobs with more (e.g. 100 parts with free rotation every 30 degrees)
+MAX_PAIRS = 40000
+MAX_SHRINK = 0.004
+MIN_SHRINK = 0.0002
+SHRINK_BACKOFF = 0.5
+#: overlap-free layouts each worker keeps for the final check
+KEEP = 6
+COMPRESSION_SHARE = 0.2
+COMPRESS_MAX = 0.0005
+COMPRESS_MIN = 0.00002
+SWAP_P = 0.5
+
+
+class _Instance:
+    """Copies of a strip layout in the separator's terms (grid units)."""
+
+    def __init__(self, layout: Layout, parts: Sequence[Part], options: NestOptions):
+        spec = options.container
+        self.options = options
+        pieces = [piece_from_part(p, options.chord_tol, options.rotation_step,
+                                  options.part_rotations(p.rotations), options.mirror_override)
+                  for p in parts]
+        dims = [spec.height] + [float(abs(t.outer).max()) * 2.0 for t in pieces]
+        length = float(layout.metrics.get("strip_length_mm", 0.0))
+        self.scale = s = max(GRID_UNITS / max(max(dims + [length]), 1e-9), 10.0 / options.tolerance)
+        self.pieces = pieces
+        half_gap = options.spacing / 2.0
+        if half_gap > 0:
+            # make_variants allows one arc tolerance of sag for the round joins of the
+            # spacing offset, but pyclipper rounds the number of chord steps, so a
+            # 90-degree corner may get one chord and sag ~2.25 x that tolerance (the
+            # separator finds such corner-to-corner contacts): grow by the rest
+            join_tol = max([options.chord_tol, 0.01 * half_gap] + [t.tol for t in pieces])
+            half_gap += 1.5 * join_tol
+        self.variants = make_variants(pieces, s, half_gap, options.chord_tol)
+        self.choices = [[v.index for v in self.variants if v.type_index == t] for t in range(len(pieces))]
+        core = [np.asarray(v.core, dtype=np.float64) for v in self.variants]
+        self.cb = np.array([[c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max()] for c in core])
+        ob = np.array([v.bbox for v in self.variants], dtype=np.float64)
+        self.pad = float(np.abs(ob - self.cb).max())       # inflated outline beyond the core box
+        key = {t.key: k for k, t in enumerate(pieces)}
+        m = options.margin
+        self.x0, self.y0, self.y1 = m * s, m * s, (spec.height - m) * s
+        # overlaps up to a quarter of the checker's tolerance are contact (the
+        # engine's own rounding leaves such touching pairs)
+        self.eps = 0.25 * options.tolerance * s
+        n = len(layout.placements)
+        self.X, self.Y = np.zeros(n), np.zeros(n)
+        self.V = np.zeros(n, dtype=np.int64)
+        self.types = np.zeros(n, dtype=np.int64)
+        self.ok = True
+        for i, pl in enumerate(layout.placements):
+            t = key.get(pl.part_id)
+            found = None if t is None else self._variant_of(t, pl)
+            if found is None:
+                self.ok = False
+                return
+            self.types[i], (self.V[i], self.X[i], self.Y[i]) = t, found
+
+    def _variant_of(self, t: int, pl: Placement) -> Optional[Tuple[int, float, float]]:
+        """The variant showing placement ``pl``'s shape and its reference point."""
+        piece = self.pieces[t]
+        s = self.scale
+        ring = transform_ring(piece.outer, pl.angle, pl.mirrored)
+        for vi in self.choices[t]:
+            v = self.variants[vi]
+            if v.mirrored == pl.mirrored and abs((v.angle - pl.angle + 180.0) % 360.0 - 180.0) < 1e-6:
+                return vi, pl.x * s, pl.y * s
+        for vi in self.choices[t]:          # an orientation kept once (same shape moved)
+            v = self.variants[vi]
+            vr = transform_ring(piece.outer, v.angle, v.mirrored)
+            if _same_shape(ring, vr, max(piece.tol, 1e-6)):
+                d = ring.min(axis=0) - vr.min(axis=0)
+                return vi, (pl.x + d[0]) * s, (pl.y + d[1]) * s
+        return None
+
+    def right_edge(self, X: np.ndarray, V: np.ndarray) -> float:
+        return float((X + self.cb[V, 2]).max())
+
+    def to_layout(self, base: Layout, X: np.ndarray, Y: np.ndarray, V: np.ndarray) -> Layout:
+        out = copy.deepcopy(base)
+        s = self.scale
+        for i, pl in enumerate(out.placements):
+            v = self.variants[int(V[i])]
+            pl.x, pl.y, pl.angle, pl.mirrored = float(X[i]) / s, float(Y[i]) / s, v.angle, v.mirrored
+        return out
+
+
+def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
+    """Disrupt a layout: two copies of different types among the larger half
+    trade places (bounding-box centres), so the separator can find another
+    arrangement than the one it got stuck in."""
+    cb = inst.cb
+    area = (cb[V, 2] - cb[V, 0]) * (cb[V, 3] - cb[V, 1])
+    big = np.nonzero(area >= np.median(area))[0]
+    for _ in range(10):
+        a, b = rng.choice(big, 2, replace=False) if len(big) > 1 else (0, 0)
+        if inst.types[a] != inst.types[b]:
+            break
+    else:
+        return
+    ca = (X[a] + 0.5 * (cb[V[a], 0] + cb[V[a], 2]), Y[a] + 0.5 * (cb[V[a], 1] + cb[V[a], 3]))
+    cb_ = (X[b] + 0.5 * (cb[V[b], 0] + cb[V[b], 2]), Y[b] + 0.5 * (cb[V[b], 1] + cb[V[b], 3]))
+    X[a] += cb_[0] - ca[0]
+    Y[a] += cb_[1] - ca[1]
+    X[b] += ca[0] - cb_[0]
+    Y[b] += ca[1] - cb_[1]
+
+
+def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
+    """Close the strip from ``bx1`` to ``x1``: copies right of a random cut move
+    left by the difference, then every copy is pushed back inside."""
+    cb, x0 = inst.cb, inst.x0
+    cut = rng.uniform(x0, bx1)
+    centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
+    X[centre > cut] -= bx1 - x1
+    X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+    Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
+
+
+class _Best:
+    """The shortest valid layout any worker has found, (x1, X, Y, V); shared by
+    the worker threads, so each next shrink starts from the best of all (the
+    arrays are never changed once offered)."""
+
+    def __init__(self, state):
+        self._lock = threading.Lock()
+        self._state = state
+
+    def offer(self, state) -> None:
+        with self._lock:
+            if state[0] < self._state[0]:
+                self._state = state
+
+    def get(self):
+        with self._lock:
+            return self._state
+
+
+def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float, seed: int):
+    """One worker's shrink-and-separate loop (see module doc): its last ``KEEP``
+    overlap-free layouts (x1, X, Y, V), shortest last."""
+    rng = np.random.default_rng(seed)
+    seed_rng(seed)
+    x0 = inst.x0
+    best = shared.get()
+    frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
+    fails = 0
+    found: list = []
+    squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
+    while time.monotonic() < deadline and not sep.stop.is_set():
+        if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
+            # compression: the last part of the time tries ever smaller shrinks
+            frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
+        other = shared.get()
+        if other[0] < best[0]:
+            best = other                  # another worker got further: go on from there
+        bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
+        x1 = bx1 - frac * (bx1 - x0)
+        if fails and rng.random() < SWAP_P:
+            _swap_large(inst, X, Y, V, rng)
+        _squeeze(inst, X, Y, V, bx1, x1, rng)
+        if sep.separate(X, Y, V, x1, deadline, rng=rng):
+            best = (inst.right_edge(X, V), X, Y, V)
+            shared.offer(best)
+            found = (found + [best])[-KEEP:]
+            frac = min(hi, frac * 1.5)
+            fails = 0
+        else:
+            fails += 1
+            frac *= SHRINK_BACKOFF
+            if frac < lo:
+                frac = hi
+    return found
+
+
+def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
+                  deadline: float, progress: Optional[ProgressFn] = None,
+                  user_stop: Optional[Callable[[], bool]] = None) -> Layout:
+    """A valid strip layout no longer than ``layout`` (see module doc).
+
+    ``layout`` is a strip layout of ``parts`` under ``options``; ``deadline``
+    a ``time.monotonic()`` value.  Another container kind, an incomplete or
+    invalid layout, more than ``MAX_PAIRS`` orientation pairs or too little
+    time return ``layout`` itself.  ``progress`` is polled about every 0.1 s
+    (CancelledError when it asks to stop; the workers stop within a sweep).
+    ``user_stop()`` returning True (the workbench's *Stop*) ends the phase early
+    and keeps the best layout found so far."""
+    if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2 \
+            or PairTable is None:
+        return layout
+    if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
+        return layout
+    inst = _Instance(layout, parts, options)
+    if not inst.ok or len(inst.variants) ** 2 > MAX_PAIRS:
+        return layout
+    table = PairTable(inst.variants, deadline)
+    if not table.complete:
+        return layout
+    n = options.workers or max(1, min(os.cpu_count() or 1, 8))
+    stop = threading.Event()
+    seps = [Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
+                      inst.eps, stop=stop, pad=inst.pad) for _ in range(n)]
+    seps[0].warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+    # threads, not processes: the kernels release the GIL (nogil), so the workers
+    # run in parallel without pickling, forking or FreeCAD's stdin quirks
+    t0 = time.monotonic()
+    span = max(deadline - t0, 1e-9)
+    with ThreadPoolExecutor(n) as ex:
+        shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+        futs = [ex.submit(_shrink_loop, inst, sep, shared, deadline, options.seed * 7919 + k)
+                for k, sep in enumerate(seps)]
+        try:
+            while not all(f.done() for f in futs):
+                if user_stop is not None and user_stop():
+                    break
+                report(progress, 0.05 + 0.9 * min(1.0, (time.monotonic() - t0) / span),
+                       f"compacting the strip ({n} workers)")
+                wait(futs, timeout=0.1)
+        finally:
+            stop.set()
+        found = sorted((st for f in futs for st in f.result()), key=lambda st: st[0])
+    # the shortest layout the checker passes (the penalty model is exact up to
+    # rounding; the checker has the last word and a shorter rejected layout
+    # falls back to the next one)
+    for st in found[:KEEP]:
+        new = _accept(layout, parts, options, inst.to_layout(layout, st[1], st[2], st[3]))
+        if new is not layout:
+            return new
+    return layout
+
+
+def improve_last_sheet(layout: Layout, parts: Sequence[Part], options: NestOptions,
+                       deadline: float, progress: Optional[ProgressFn] = None,
+                       user_stop: Optional[Callable[[], bool]] = None) -> Layout:
+    """Sheets: shorten the used length (along X) of the last sheet with the
+    strip phase (the sheet's height is the strip's width); the other sheets
+    stay as they are.  Returns ``layout`` unless the checker passes a shorter
+    last sheet."""
+    if options.container.kind != "sheet" or not layout.containers or layout.unplaced:
+        return layout
+    from .engine import fill_metrics
+    last = layout.containers[-1].id
+    strip = dataclasses.replace(options, container=ContainerSpec.strip(options.container.height))
+    sub = Layout(containers=[Container(id="strip", kind="strip", outline=[])],
+                 placements=[dataclasses.replace(pl, container="strip")
+                             for pl in layout.placements if pl.container == last])
+    fill_metrics(parts, sub, strip)
+    better = improve_strip(sub, parts, strip, deadline, progress, user_stop)
+    if better is sub:
+        return layout
+    new = copy.deepcopy(layout)
+    new.placements = [pl for pl in new.placements if pl.container != last] + \
+        [dataclasses.replace(pl, container=last) for pl in better.placements]
+    fill_metrics(parts, new, options)
+    return layout if _problems(parts, new, options) else new
+
+
+def nest_compacted(parts: Sequence[Part], options: NestOptions,
+                   progress: Optional[ProgressFn] = None,
+                   on_best: Optional[Callable[[Layout], None]] = None,
+                   stop: Optional[Callable[[], bool]] = None) -> Layout:
+    """The own engine with this phase: on a strip its search runs for
+    ``SEARCH_SHARE`` of the time budget (sheets: ``SHEET_SEARCH_SHARE``), then
+    :func:`improve_strip` (:func:`improve_last_sheet`) until the budget ends.  Hides, a reproducible
+    run (``max_evaluations``) or no budget get the engine alone: this phase is
+    driven by the clock.  Without numba the engine also runs alone.  ``on_best``
+    and ``stop`` are the engine's (best layout so far; *Stop* keeps it)."""
+    from .engine import run_own
+    t0 = time.monotonic()
+    kind = options.container.kind
+    if kind not in ("strip", "sheet") or options.max_evaluations is not None \
+            or options.time_budget <= 0 or PairTable is None:
+        return run_own(parts, options, progress, on_best, stop)
+    share = SEARCH_SHARE if kind == "strip" else SHEET_SEARCH_SHARE
+    first = dataclasses.replace(options, time_budget=options.time_budget * share)
+    layout = run_own(parts, first, progress, on_best, stop)
+    if stop is not None and stop():
+        return layout
+    phase = improve_strip if kind == "strip" else improve_last_sheet
+    better = phase(layout, parts, options, t0 + options.time_budget, progress, stop)
+    better.metrics["time_s"] = round(time.monotonic() - t0, 3)
+    if better is not layout and on_best is not None:
+        on_best(better)
+    return better
+
+
+def _problems(parts: Sequence[Part], layout: Layout, options: NestOptions) -> List[str]:
+    return check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
+                        tol=options.tolerance, chord_tol=options.chord_tol,
+                        rotations_override=options.rotations_override,
+                        mirror_override=options.mirror_override,
+                        free_rotation=options.free_rotation)
+
+
+def _accept(old: Layout, parts: Sequence[Part], options: NestOptions, new: Layout) -> Layout:
+    """``new`` if the checker passes it and its strip is shorter, else ``old``."""
+    from .engine import fill_metrics
+    fill_metrics(parts, new, options)
+    if new.metrics["strip_length_mm"] >= old.metrics.get("strip_length_mm", float("inf")):
+        return old
+    if _problems(parts, new, options):
+        return old
+    new.metrics["strip_improved_from_mm"] = old.metrics.get("strip_length_mm")
+    return new

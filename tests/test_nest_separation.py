@@ -1,0 +1,185 @@
+"""The strip improvement phase (overlap penetration depth, separator, shrink
+loop) on real geometry: the ESICUP instance fu and real parts with holes.
+Every returned layout is re-checked with the independent checker."""
+
+import os
+import time
+
+import numpy as np
+import pytest
+
+from LeatherCutWorkbench.core.errors import CancelledError
+from LeatherCutWorkbench.core.model import Container, Layout, Placement
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
+from LeatherCutWorkbench.core.nesting.engine import fill_metrics
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
+from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
+from LeatherCutWorkbench.core.nesting.separation import Separator
+from LeatherCutWorkbench.core.nesting.strip_shrink import (_Instance, improve_last_sheet, improve_strip,
+                                                         nest_compacted)
+
+from nest_shapes import frame, rect
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+
+
+def _fu():
+    inst = read_esicup(os.path.join(DATA, "fu.json"))
+    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=0.5,
+                       max_evaluations=8, seed=1, workers=1)
+    return inst.parts, opts
+
+
+def _valid(parts, lay, opts):
+    return check_layout(parts, lay, spacing=opts.spacing, margin=opts.margin)
+
+
+def _loose_row(parts, opts, gap):
+    """Every copy at angle 0 in one row along the strip, ``gap`` mm apart: valid, loose."""
+    placements, x = [], 0.0
+    for p in parts:
+        x0, y0, x1, y1 = p.outer.bbox
+        for k in range(p.quantity):
+            placements.append(Placement(part_id=p.id, copy=k, container="strip",
+                                        x=x - x0 + opts.margin, y=opts.margin - y0, angle=0.0))
+            x += (x1 - x0) + gap
+    lay = Layout(containers=[Container(id="strip", kind="strip", outline=[])],
+                 placements=placements)
+    fill_metrics(parts, lay, opts)
+    return lay
+
+
+@pytest.fixture(scope="module", autouse=True)
+def compiled_kernels():
+    """Compile the numba kernels before the timed tests (the first compile on a
+    fresh checkout takes seconds, which would eat a test's deadline)."""
+    parts, opts = _fu()
+    inst = _Instance(_loose_row(parts, opts, gap=1.0), parts, opts)
+    tab = PairTable(inst.variants)
+    Separator(tab, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
+              inst.eps).warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+
+
+def test_penetration_depth_of_two_squares_is_the_shortest_separating_move():
+    sq = rect("s", 10, 10)
+    scale = 1000.0                         # grid units per mm
+    v = make_variants([piece_from_part(sq, 0.05, 90, [0])], scale, 0.0, 0.05)
+    tab = PairTable(v)
+    arrs = tab.arrays()
+    # B 7 mm right and 2 mm up of A: pushing it 3 mm right separates them
+    assert pair_depth(7000.0, 2000.0, 0, *arrs) == pytest.approx(3000.0, abs=3.0)
+    assert pair_depth(1000.0, -9000.0, 0, *arrs) == pytest.approx(1000.0, abs=3.0)
+    assert pair_depth(10010.0, 0.0, 0, *arrs) == 0.0        # 10 microns apart: no overlap
+    assert pair_depth(0.0, 0.0, 0, *arrs) == pytest.approx(10000.0, abs=3.0)
+
+
+def test_depth_is_zero_for_a_part_inside_the_hole_of_another():
+    fr = frame("F", 100, 100, 10)          # hole 80 x 80 mm
+    small = rect("s", 20, 20)
+    pieces = [piece_from_part(p, 0.05, 90, [0]) for p in (fr, small)]
+    v = make_variants(pieces, 100.0, 0.0, 0.05)
+    tab = PairTable(v)
+    p = 0 * tab.n + 1                      # the square around the fixed frame
+    assert pair_depth(4000.0, 4000.0, p, *tab.arrays()) == 0.0           # inside the hole
+    assert pair_depth(500.0, 4000.0, p, *tab.arrays()) > 400.0           # on the frame's bar
+
+
+def test_engine_layout_is_never_made_invalid_or_longer():
+    parts, opts = _fu()
+    lay = nest(parts, opts)
+    before = lay.metrics["strip_length_mm"]
+    new = improve_strip(lay, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    assert new.unplaced == [] and len(new.placements) == len(lay.placements)
+    assert new.metrics["strip_length_mm"] <= before
+    assert new.metrics["density"] >= lay.metrics["density"]
+
+
+def test_loose_layout_shrinks_a_lot_and_stays_valid_with_spacing_and_margin():
+    parts, opts = _fu()
+    opts.spacing, opts.margin = 0.5, 1.0
+    loose = _loose_row(parts, opts, gap=3.0)
+    assert _valid(parts, loose, opts) == []
+    before = loose.metrics["strip_length_mm"]
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    assert len(new.placements) == len(loose.placements)
+    # one row of 12 copies is > 3x longer than a packed strip: expect far less than half
+    assert new.metrics["strip_length_mm"] < 0.5 * before
+    assert new.metrics["strip_improved_from_mm"] == pytest.approx(before)
+
+
+def test_parts_with_holes_can_take_a_copy_in_the_hole():
+    parts = [frame("F", 60, 60, 8, q=2), rect("s", 30, 30, q=2, rotations=[0])]
+    opts = NestOptions(container=ContainerSpec.strip(60), workers=1)
+    loose = _loose_row(parts, opts, gap=5.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    # the frames need 120 mm side by side; the squares only fit without growing it in the holes
+    assert new.metrics["strip_length_mm"] < 121.0
+
+
+def test_other_containers_and_incomplete_layouts_come_back_unchanged():
+    parts, opts = _fu()
+    lay = nest(parts, opts)
+    sheet = NestOptions(container=ContainerSpec.sheet(100, 40), workers=1)
+    assert improve_strip(lay, parts, sheet, time.monotonic() + 1.0) is lay
+    lay.unplaced.append((parts[0].id, 99))
+    assert improve_strip(lay, parts, opts, time.monotonic() + 1.0) is lay
+    assert np.isfinite(lay.metrics["strip_length_mm"])
+
+
+def test_two_workers_and_cancel():
+    parts, opts = _fu()
+    opts.workers = 2
+    loose = _loose_row(parts, opts, gap=2.0)
+    new = improve_strip(loose, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    assert new.metrics["strip_length_mm"] < 0.5 * loose.metrics["strip_length_mm"]
+    t0 = time.monotonic()
+    with pytest.raises(CancelledError):
+        improve_strip(loose, parts, opts, time.monotonic() + 30.0, progress=lambda f, m: False)
+    assert time.monotonic() - t0 < 10.0          # the workers stop at their next sweep
+
+
+def test_last_sheet_gets_shorter_and_the_first_sheet_stays():
+    parts = [rect("a", 48, 48, q=2, rotations=[0]), rect("b", 20, 20, q=4, rotations=[0])]
+    opts = NestOptions(container=ContainerSpec.sheet(100, 50), workers=1)
+    pls = [Placement(part_id="a", copy=k, container="sheet1", x=50.0 * k, y=0.0) for k in range(2)]
+    pls += [Placement(part_id="b", copy=k, container="sheet2", x=25.0 * k, y=0.0) for k in range(4)]
+    sheets = [Container(id=f"sheet{k}", kind="sheet", outline=[(0, 0), (100, 0), (100, 50), (0, 50)])
+              for k in (1, 2)]
+    lay = Layout(containers=sheets, placements=pls)
+    fill_metrics(parts, lay, opts)
+    assert _valid(parts, lay, opts) == []
+    new = improve_last_sheet(lay, parts, opts, time.monotonic() + 4.0)
+    assert _valid(parts, new, opts) == []
+    per = {c["id"]: c for c in new.metrics["per_container"]}
+    assert per["sheet2"]["used_length_mm"] < 60.0          # was 95: two columns of two fit in 40
+    assert [(p.x, p.y) for p in new.placements if p.container == "sheet1"] == [(0.0, 0.0), (50.0, 0.0)]
+
+
+def test_nest_compacted_on_sheets_keeps_the_sheet_count_and_is_valid():
+    parts = [rect("a", 60, 40, q=7, rotations=[0, 90])]
+    opts = NestOptions(container=ContainerSpec.sheet(130, 90), time_budget=3.0, workers=1)
+    lay = nest_compacted(parts, opts)
+    assert _valid(parts, lay, opts) == [] and lay.unplaced == []
+    assert lay.metrics["sheets"] == 2                 # 4 per sheet at most
+    assert lay.metrics["time_s"] <= 3.0 + 0.1 * 3.0 + 1.0
+
+
+def test_inflated_outlines_keep_half_the_spacing_at_corners():
+    # pyclipper gives a 90-degree round join one chord; it cut the corner to 0.212 mm
+    # of a 0.25 mm half gap, and the separator put two corners 0.49 mm apart
+    from shapely.geometry import Polygon
+    from LeatherCutWorkbench.core.nesting.shapes import transform_ring
+    parts = [rect("r", 5, 9, rotations=[0, 90])]
+    opts = NestOptions(container=ContainerSpec.strip(20), spacing=0.5, workers=1)
+    loose = _loose_row(parts, opts, gap=1.0)
+    inst = _Instance(loose, parts, opts)
+    for v in inst.variants:
+        true = Polygon(transform_ring(inst.pieces[0].outer, v.angle, v.mirrored))
+        grown = Polygon(np.asarray(v.outer, dtype=float) / inst.scale)
+        assert grown.contains(true)
+        assert true.exterior.distance(grown.exterior) >= 0.25
