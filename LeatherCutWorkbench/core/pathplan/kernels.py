@@ -941,13 +941,18 @@ def _tournament(pop_cost, st):
 
 
 @njit
-def _lns_steps(t, c, cur, steps, S, P, st, full_dp, kmax, noise):
-    """Iterated ruin-and-recreate on (t, c): each step is kept when it is not
-    worse.  Returns (t, cost)."""
+def _lns_steps(t, c, cur, steps, S, P, st, full_dp, kmax, noise, accept):
+    """Iterated ruin-and-recreate on (t, c): a step is kept when its tour is
+    at most ``accept`` (relative) longer than the current one (threshold
+    acceptance: the walk can leave a local optimum); returns the best tour
+    seen and its cost (c holds its candidates)."""
     m = t.shape[0]
     pos = np.empty(m, dtype=np.int64)
     touched = np.empty(m, dtype=np.int64)
     act = np.empty(3 * m, dtype=np.int64)
+    best_t = t.copy()
+    best_c = c.copy()
+    best = cur
     for _ in range(steps):
         kind = rnd_int(st, 4)
         k = min(2 + rnd_int(st, max(1, kmax - 1)), m - 1)
@@ -971,24 +976,30 @@ def _lns_steps(t, c, cur, steps, S, P, st, full_dp, kmax, noise):
                 i = pos[touched[r]]
                 dp_window(t2, c2, i - 2, i + 2, S, P)
             new = tour_cost(t2, c2, P)
-        if new <= cur + EPS * max(1.0, cur):
+        if new <= cur * (1.0 + accept) + EPS * max(1.0, cur):
             t = t2
             c[:] = c2
             cur = new
-    return t, cur
+            if new < best - EPS * max(1.0, best):
+                best = new
+                best_t[:] = t2
+                best_c[:] = c2
+    c[:] = best_c
+    return best_t, best
 
 
 @njit
 def evolve(pop_t, pop_c, pop_cost, stats, n_gens, S, P, st, full_dp, p_cross,
-           lns_steps, kmax, noise, restart_after):
+           lns_steps, kmax, noise, restart_after, accept):
     """Run ``n_gens`` generations of the memetic GA on one island (in place).
     A generation makes one child -- by order crossover of two
     tournament-selected parents (p_cross), or as a copy of one parent --
     repairs precedence, chooses entries by the DP, improves it by local search
-    and ``lns_steps`` iterated ruin-and-recreate moves, and lets it replace
-    the worst individual when it is better and not a duplicate.  After
-    ``restart_after`` generations without a new island best, all but the best
-    are replaced by fresh randomised tours.  ``stats = [generations done,
+    and ``lns_steps`` iterated ruin-and-recreate moves (threshold acceptance
+    ``accept``), and lets it replace the worst individual when it is better
+    and not a duplicate.  After ``restart_after`` generations without a new
+    island best, all but the best are replaced by heavily perturbed copies of
+    the best and fresh randomised tours.  ``stats = [generations done,
     generations since the island best improved]``."""
     npop, m = pop_t.shape
     pos = np.empty(m, dtype=np.int64)
@@ -1011,7 +1022,7 @@ def evolve(pop_t, pop_c, pop_cost, stats, n_gens, S, P, st, full_dp, p_cross,
             child = pop_t[i1].copy()
             cc = pop_c[i1].copy()
             cst = pop_cost[i1]
-        child, cst = _lns_steps(child, cc, cst, lns_steps, S, P, st, full_dp, kmax, noise)
+        child, cst = _lns_steps(child, cc, cst, lns_steps, S, P, st, full_dp, kmax, noise, accept)
         worst = 0
         dup = False
         for i in range(npop):
@@ -1028,12 +1039,21 @@ def evolve(pop_t, pop_c, pop_cost, stats, n_gens, S, P, st, full_dp, p_cross,
         else:
             stats[1] += 1
         if stats[1] >= restart_after and npop > 1:
+            # restart around the best: half of the others are the best
+            # heavily ruined and recreated (a quarter of the tour), half fresh
+            # randomised nearest-neighbour tours
             stats[1] = 0
             b = np.argmin(pop_cost)
+            touched = np.empty(m, dtype=np.int64)
             for i in range(npop):
                 if i == b:
                     continue
-                t, c = random_nn(S, P, st, 3)
+                if i % 2 == 0:
+                    c = pop_c[b].copy()
+                    t = ruin_recreate(pop_t[b], c, max(kmax, m // 4), rnd_int(st, 4), noise, S, P,
+                                      st, touched)
+                else:
+                    t, c = random_nn(S, P, st, 3)
                 dp_full(t, c, S, P)
                 pop_cost[i] = improve(t, c, pos, t, S, P, True)
                 pop_t[i] = t

@@ -111,6 +111,7 @@ def settings(m: int) -> dict:
         "lns_steps": 8 if m <= 300 else 16,
         "kmax": max(4, min(30, m // 8)),
         "noise": 0.1,
+        "accept": 0.002,
         "restart_after": 60 + m // 2,
         "stall_limit": 400 + 4 * m,
     }
@@ -161,7 +162,7 @@ def run_memetic(inst: Instance, *, time_limit: float, seed: int,
         def epoch(i: int) -> None:
             K.evolve(pops[i][0], pops[i][1], pops[i][2], stats[i], step, S, P, states[i],
                      cfg["full_dp"], cfg["p_cross"], cfg["lns_steps"], cfg["kmax"], cfg["noise"],
-                     cfg["restart_after"])
+                     cfg["restart_after"], cfg["accept"])
 
         each(init)
         budget = max_iterations if max_iterations is not None else float("inf")
