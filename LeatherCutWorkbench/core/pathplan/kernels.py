@@ -912,6 +912,47 @@ def ruin_recreate(t, c, k, kind, noise, S, P, st, touched):
     return nt
 
 
+@njit
+def segment_swap(t, S, st, max_len, touched):
+    """Double-bridge kick: swap two adjacent random segments (each at most
+    ``max_len`` items) of a copy of t; returns (tour, number of items written
+    to ``touched`` -- the ends of the moved segments), or (copy of t, 0) when
+    the swap would put an item before one of its predecessors."""
+    pptr, pidx = S[4], S[5]
+    m = t.shape[0]
+    t2 = t.copy()
+    lmax = max(1, min(max_len, (m - 1) // 3))
+    l1 = 1 + rnd_int(st, lmax)
+    l2 = 1 + rnd_int(st, lmax)
+    if l1 + l2 > m - 1:
+        return t2, 0
+    p1 = 1 + rnd_int(st, m - l1 - l2)
+    p2 = p1 + l1
+    p3 = p2 + l2
+    inb = np.zeros(m, dtype=np.bool_)
+    for i in range(p1, p2):
+        inb[t[i]] = True
+    for i in range(p2, p3):
+        x = t[i]
+        for r in range(pptr[x], pptr[x + 1]):
+            if inb[pidx[r]]:
+                return t2, 0
+    k = p1
+    for i in range(p2, p3):
+        t2[k] = t[i]
+        k += 1
+    for i in range(p1, p2):
+        t2[k] = t[i]
+        k += 1
+    touched[0] = t[p1 - 1]
+    touched[1] = t[p1]
+    touched[2] = t[p2 - 1]
+    touched[3] = t[p2]
+    touched[4] = t[p3 - 1]
+    touched[5] = t[p3 % m]
+    return t2, 6
+
+
 # ---------------------------------------------------------------- the genetic algorithm
 @njit
 def init_island(pop_t, pop_c, pop_cost, seed_t, seed_c, use_seed, S, P, st):
@@ -942,22 +983,29 @@ def _tournament(pop_cost, st):
 
 @njit
 def _lns_steps(t, c, cur, steps, S, P, st, full_dp, kmax, noise, accept):
-    """Iterated ruin-and-recreate on (t, c): a step is kept when its tour is
+    """Iterated ruin-and-recreate (or, one step in five, a double-bridge
+    kick) on (t, c), each step followed by local search and the entry DP; a
+    step is kept when its tour is
     at most ``accept`` (relative) longer than the current one (threshold
     acceptance: the walk can leave a local optimum); returns the best tour
     seen and its cost (c holds its candidates)."""
     m = t.shape[0]
     pos = np.empty(m, dtype=np.int64)
-    touched = np.empty(m, dtype=np.int64)
-    act = np.empty(3 * m, dtype=np.int64)
+    touched = np.empty(max(m, 6), dtype=np.int64)
+    act = np.empty(3 * max(m, 6), dtype=np.int64)
     best_t = t.copy()
     best_c = c.copy()
     best = cur
     for _ in range(steps):
-        kind = rnd_int(st, 4)
-        k = min(2 + rnd_int(st, max(1, kmax - 1)), m - 1)
+        kind = rnd_int(st, 5)
         c2 = c.copy()
-        t2 = ruin_recreate(t, c2, k, kind, noise, S, P, st, touched)
+        if kind == 4:
+            t2, k = segment_swap(t, S, st, 30, touched)
+            if k == 0:
+                continue
+        else:
+            k = min(2 + rnd_int(st, max(1, kmax - 1)), m - 1)
+            t2 = ruin_recreate(t, c2, k, kind, noise, S, P, st, touched)
         for i in range(m):
             pos[t2[i]] = i
         na = 0

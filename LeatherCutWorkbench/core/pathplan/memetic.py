@@ -104,7 +104,7 @@ def _seed_state(seed: int, island: int) -> np.ndarray:
 def settings(m: int) -> dict:
     """Search settings by size (fixed by m, never by the machine)."""
     return {
-        "pop": 12 if m <= 300 else 8 if m <= 1500 else 4,
+        "pop": 12 if m <= 300 else 8 if m <= 600 else 4 if m <= 1500 else 2,
         "epoch": max(1, min(25, 4000 // max(m, 1))),
         "full_dp": m <= 600,
         "p_cross": 0.5,
