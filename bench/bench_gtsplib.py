@@ -29,19 +29,14 @@ sys.path.insert(0, HERE)
 
 import gtsplib  # noqa: E402
 from LeatherCutWorkbench.core.pathplan import solve_gtsp  # noqa: E402
+from LeatherCutWorkbench.core.pathplan.gtsp import gtsp_instance  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.instance import EuclidInstance, MatrixInstance  # noqa: E402
 from LeatherCutWorkbench.core.pathplan.memetic import run_memetic  # noqa: E402
 
 
 def matrix_instance(D, clusters):
     """The instance solve_gtsp builds (smallest cluster first as the anchor)."""
-    order = sorted(range(len(clusters)), key=lambda k: (len(clusters[k]), k))
-    nodes, new, off = [], [], 0
-    for k in order:
-        nodes += clusters[k]
-        new.append(list(range(off, off + len(clusters[k]))))
-        off += len(clusters[k])
-    return MatrixInstance(D, new, start_node=np.array(nodes), end_node=np.array(nodes))
+    return gtsp_instance(D, clusters)[0]
 
 
 def references(name: str, D, clusters):
@@ -50,12 +45,8 @@ def references(name: str, D, clusters):
     P = gtsplib.read_tsp(gtsplib.OPTIMA[name][0])
     # an EuclidInstance on the nodes with the home = the smallest cluster's first node;
     # the references price moves with these coordinates and the DP re-evaluates exactly
-    order = sorted(range(len(clusters)), key=lambda k: (len(clusters[k]), k))
-    nodes = [v for k in order for v in clusters[k]]
-    new, off = [], 0
-    for k in order:
-        new.append(list(range(off, off + len(clusters[k]))))
-        off += len(clusters[k])
+    minst, node_of = gtsp_instance(D, clusters)
+    nodes, new = node_of.tolist(), minst.cand_lists
     inst = EuclidInstance(new, P[nodes])
     lkh = pv = lkh_cpu = None
     if HAVE_ELKAI:

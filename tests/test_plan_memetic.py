@@ -14,6 +14,7 @@ import pytest
 from LeatherCutWorkbench.core.pathplan import PlanOptions, plan
 from LeatherCutWorkbench.core.pathplan import kernels as K
 from LeatherCutWorkbench.core.pathplan.ga import run_ga
+from LeatherCutWorkbench.core.pathplan.gtsp import gtsp_instance
 from LeatherCutWorkbench.core.pathplan.instance import EuclidInstance, MatrixInstance
 from LeatherCutWorkbench.core.pathplan.memetic import _seed_state, pack
 from LeatherCutWorkbench.core.pathplan.nn import nearest_neighbour
@@ -163,13 +164,7 @@ def _rat195():
         near = np.minimum(near, D[centres[-1]])
     lab = np.argmin(D[:, centres], axis=1)
     clusters = [np.flatnonzero(lab == k).tolist() for k in range(len(centres))]
-    order = sorted(range(len(clusters)), key=lambda k: (len(clusters[k]), k))
-    nodes = [v for k in order for v in clusters[k]]
-    new, off = [], 0
-    for k in order:
-        new.append(list(range(off, off + len(clusters[k]))))
-        off += len(clusters[k])
-    return MatrixInstance(D, new, start_node=np.array(nodes), end_node=np.array(nodes))
+    return gtsp_instance(D, clusters)[0]
 
 
 def test_no_stall_on_39rat195():
@@ -179,3 +174,40 @@ def test_no_stall_on_39rat195():
     res = run_ga(inst, time_limit=600, seed=1, max_iterations=150)
     assert res.cost >= 854 - 1e-9          # the proven optimum (FST 1997): a real instance
     assert res.cost <= 854 * 1.01
+
+
+def test_python_local_search_converges_on_39rat195():
+    # it used to apply zero-gain Or-opt moves and cycle on rat195's equal
+    # distances until the deadline (the former GA then ran 0 generations)
+    import time
+    from LeatherCutWorkbench.core.pathplan.localsearch import local_search
+    inst = _rat195()
+    near, nd = inst.neighbours(10)
+    t, c = nearest_neighbour(inst)
+    for _ in range(2):    # from the NN tour, then again from its result
+        w = time.perf_counter()
+        local_search(inst, t, c, near, nd, deadline=w + 60)
+        assert time.perf_counter() - w < 30      # converged, not stopped by the deadline
+    assert violations(t, inst.preds) == 0 and sorted(t) == list(range(inst.m))
+
+
+@pytest.mark.parametrize("asym", [False, True])
+def test_compiled_dp_equals_the_numpy_dp(asym):
+    from LeatherCutWorkbench.core.pathplan.dp import optimal_entries
+    inst = _prec_instance(9, m=25, per=5, asym=asym)
+    S, P = pack(inst)
+    r = random.Random(4)
+    for _ in range(5):
+        order = [0] + r.sample(range(1, inst.m), inst.m - 1)
+        c = np.zeros(inst.m, dtype=np.int64)
+        got = K.dp_full(np.array(order), c, S, P)
+        ref = optimal_entries(inst, order)[1]
+        assert got == pytest.approx(ref)
+        assert inst.tour_cost(order, c.tolist()) == pytest.approx(ref)
+        # a window DP can only keep or improve, and stays consistent
+        c2 = c.copy()
+        c2[order[5:12]] = [inst.cand_lists[k][0] for k in order[5:12]]
+        before = inst.tour_cost(order, c2.tolist())
+        gain = K.dp_window(np.array(order), c2, 5, 11, S, P)
+        assert inst.tour_cost(order, c2.tolist()) == pytest.approx(before - gain)
+        assert inst.tour_cost(order, c2.tolist()) >= ref - 1e-9

@@ -104,23 +104,19 @@ def tour_cost(t, c, P):
 
 # ---------------------------------------------------------------- entry DP
 @njit
-def _dp_from(t, c, S, P, g0, back, F, F2, want_back):
-    """Layered shortest path for a fixed order starting and ending at anchor
-    candidate g0; returns the closed cost; with want_back fills ``back`` (per
-    layer offsets = cumulative cluster sizes along t) and the choice c."""
+def _dp_layers(t, i0, i1, F, F2, back, want_back, S, P):
+    """Advance the layered DP: ``F`` holds the cheapest cost of reaching each
+    candidate of the item at position i0; afterwards it holds those of the
+    item at i1.  With want_back, ``back`` records the best predecessor of
+    every candidate, layer after layer.  Returns (first candidate slot and
+    count of the item at i1, length of ``back`` used)."""
     cptr, cids = S[0], S[1]
-    m = t.shape[0]
-    k1 = t[1]
-    a1, b1 = cptr[k1], cptr[k1 + 1]
-    n1 = b1 - a1
-    for j in range(n1):
-        F[j] = cost(g0, cids[a1 + j], P)
+    prev_a = cptr[t[i0]]
+    prev_n = cptr[t[i0] + 1] - prev_a
     off = 0
-    prev_a, prev_n = a1, n1
-    for i in range(2, m):
+    for i in range(i0 + 1, i1 + 1):
         k = t[i]
-        a, b = cptr[k], cptr[k + 1]
-        nk = b - a
+        a, nk = cptr[k], cptr[k + 1] - cptr[k]
         for j in range(nk):
             h = cids[a + j]
             best = np.inf
@@ -137,22 +133,50 @@ def _dp_from(t, c, S, P, g0, back, F, F2, want_back):
             F[j] = F2[j]
         off += nk
         prev_a, prev_n = a, nk
+    return prev_a, prev_n, off
+
+
+@njit
+def _dp_close(F, prev_a, prev_n, g_end, S, P):
+    """Cheapest way on from the last layer to candidate g_end: (cost, slot)."""
+    cids = S[1]
     best = np.inf
     arg = 0
     for q in range(prev_n):
-        v = F[q] + cost(cids[prev_a + q], g0, P)
+        v = F[q] + cost(cids[prev_a + q], g_end, P)
         if v < best:
             best = v
             arg = q
+    return best, arg
+
+
+@njit
+def _dp_back(t, c, i0, i1, j, off, back, S):
+    """Write the DP's choice for positions i1 down to i0 into c, starting
+    from slot j of the item at i1."""
+    cptr, cids = S[0], S[1]
+    for i in range(i1, i0 - 1, -1):
+        k = t[i]
+        c[k] = cids[cptr[k] + j]
+        if i > i0:
+            off -= cptr[k + 1] - cptr[k]
+            j = back[off + j]
+
+
+@njit
+def _dp_from(t, c, S, P, g0, back, F, F2, want_back):
+    """Layered shortest path for a fixed order starting and ending at anchor
+    candidate g0; returns the closed cost; with want_back also the choice c."""
+    cptr, cids = S[0], S[1]
+    m = t.shape[0]
+    k1 = t[1]
+    for j in range(cptr[k1 + 1] - cptr[k1]):
+        F[j] = cost(g0, cids[cptr[k1] + j], P)
+    prev_a, prev_n, off = _dp_layers(t, 1, m - 1, F, F2, back, want_back, S, P)
+    best, arg = _dp_close(F, prev_a, prev_n, g0, S, P)
     if want_back:
         c[t[0]] = g0
-        j = arg
-        for i in range(m - 1, 0, -1):
-            k = t[i]
-            c[k] = cids[cptr[k] + j]
-            if i > 1:
-                off -= cptr[k + 1] - cptr[k]
-                j = back[off + j]
+        _dp_back(t, c, 1, m - 1, arg, off, back, S)
     return best
 
 
@@ -218,45 +242,13 @@ def dp_window(t, c, lo, hi, S, P):
     F = np.empty(mx)
     F2 = np.empty(mx)
     k = t[lo]
-    a, nk = cptr[k], cptr[k + 1] - cptr[k]
-    for j in range(nk):
-        F[j] = cost(before, cids[a + j], P)
-    prev_a, prev_n = a, nk
-    off = 0
-    for i in range(lo + 1, hi + 1):
-        k = t[i]
-        a, nk = cptr[k], cptr[k + 1] - cptr[k]
-        for j in range(nk):
-            h = cids[a + j]
-            best = np.inf
-            arg = 0
-            for q in range(prev_n):
-                v = F[q] + cost(cids[prev_a + q], h, P)
-                if v < best:
-                    best = v
-                    arg = q
-            F2[j] = best
-            back[off + j] = arg
-        for j in range(nk):
-            F[j] = F2[j]
-        off += nk
-        prev_a, prev_n = a, nk
-    best = np.inf
-    arg = 0
-    for q in range(prev_n):
-        v = F[q] + cost(cids[prev_a + q], after, P)
-        if v < best:
-            best = v
-            arg = q
+    for j in range(cptr[k + 1] - cptr[k]):
+        F[j] = cost(before, cids[cptr[k] + j], P)
+    prev_a, prev_n, off = _dp_layers(t, lo, hi, F, F2, back, True, S, P)
+    best, arg = _dp_close(F, prev_a, prev_n, after, S, P)
     if best >= old - EPS:
         return 0.0
-    j = arg
-    for i in range(hi, lo - 1, -1):
-        k = t[i]
-        c[k] = cids[cptr[k] + j]
-        if i > lo:
-            off -= cptr[k + 1] - cptr[k]
-            j = back[off + j]
+    _dp_back(t, c, lo, hi, arg, off, back, S)
     return old - best
 
 
