@@ -104,6 +104,21 @@ def tour_cost(t, c, P):
 
 # ---------------------------------------------------------------- entry DP
 @njit
+def _dp_close(F, prev_a, prev_n, g_end, S, P):
+    """Cheapest way from the layer of F (candidate slots prev_a..prev_a +
+    prev_n) on to candidate g_end: (cost, slot)."""
+    cids = S[1]
+    best = np.inf
+    arg = 0
+    for q in range(prev_n):
+        v = F[q] + cost(cids[prev_a + q], g_end, P)
+        if v < best:
+            best = v
+            arg = q
+    return best, arg
+
+
+@njit
 def _dp_layers(t, i0, i1, F, F2, back, want_back, S, P):
     """Advance the layered DP: ``F`` holds the cheapest cost of reaching each
     candidate of the item at position i0; afterwards it holds those of the
@@ -118,14 +133,7 @@ def _dp_layers(t, i0, i1, F, F2, back, want_back, S, P):
         k = t[i]
         a, nk = cptr[k], cptr[k + 1] - cptr[k]
         for j in range(nk):
-            h = cids[a + j]
-            best = np.inf
-            arg = 0
-            for q in range(prev_n):
-                v = F[q] + cost(cids[prev_a + q], h, P)
-                if v < best:
-                    best = v
-                    arg = q
+            best, arg = _dp_close(F, prev_a, prev_n, cids[a + j], S, P)
             F2[j] = best
             if want_back:
                 back[off + j] = arg
@@ -134,20 +142,6 @@ def _dp_layers(t, i0, i1, F, F2, back, want_back, S, P):
         off += nk
         prev_a, prev_n = a, nk
     return prev_a, prev_n, off
-
-
-@njit
-def _dp_close(F, prev_a, prev_n, g_end, S, P):
-    """Cheapest way on from the last layer to candidate g_end: (cost, slot)."""
-    cids = S[1]
-    best = np.inf
-    arg = 0
-    for q in range(prev_n):
-        v = F[q] + cost(cids[prev_a + q], g_end, P)
-        if v < best:
-            best = v
-            arg = q
-    return best, arg
 
 
 @njit
@@ -360,6 +354,18 @@ def _move_segment(t, pos, i, L, q, rev, buf):
 
 
 @njit
+def _related_in(t, pos, i, L, ptr, idx, lo, hi):
+    """True when an item of t[i:i+L] has a related item (CSR ptr/idx:
+    predecessors or successors) at a position in lo..hi."""
+    for k in range(i, i + L):
+        x = t[k]
+        for r in range(ptr[x], ptr[x + 1]):
+            if lo <= pos[idx[r]] <= hi:
+                return True
+    return False
+
+
+@njit
 def _or_opt(a, t, c, pos, S, P, queue, inq, qs, inseg, buf, max_seg):
     cptr, cids, near, neard = S[0], S[1], S[2], S[3]
     pptr, pidx, sptr, sidx, flags = S[4], S[5], S[6], S[7], S[8]
@@ -435,24 +441,12 @@ def _or_opt(a, t, c, pos, S, P, queue, inq, qs, inseg, buf, max_seg):
             continue
         q = bq
         if prec:
-            ok = True
+            # moving forward the segment passes items that must not be its
+            # successors; moving back, items that must not be its predecessors
             if q > i + L - 1:
-                lo, hi = i + L, q
-                for k in range(i, i + L):
-                    x = t[k]
-                    for r in range(sptr[x], sptr[x + 1]):
-                        y = pos[sidx[r]]
-                        if lo <= y <= hi:
-                            ok = False
-            else:
-                lo, hi = q + 1, i - 1
-                for k in range(i, i + L):
-                    x = t[k]
-                    for r in range(pptr[x], pptr[x + 1]):
-                        y = pos[pidx[r]]
-                        if lo <= y <= hi:
-                            ok = False
-            if not ok:
+                if _related_in(t, pos, i, L, sptr, sidx, i + L, q):
+                    continue
+            elif _related_in(t, pos, i, L, pptr, pidx, q + 1, i - 1):
                 continue
         u = t[q]
         v = t[(q + 1) % m]
@@ -574,13 +568,10 @@ def repair(t, S):
             s = l_
             if l_ + 1 < hn and heap[l_ + 1] < heap[l_]:
                 s = l_ + 1
-            if heap[s] < heap[j]:
-                tmp = heap[s]
-                heap[s] = heap[j]
-                heap[j] = tmp
-                j = s
-            else:
+            if heap[s] >= heap[j]:
                 break
+            heap[s], heap[j] = heap[j], heap[s]
+            j = s
         it = t[r0]
         out[no] = it
         no += 1
@@ -591,15 +582,10 @@ def repair(t, S):
                 heap[hn] = rank[s2]
                 j = hn
                 hn += 1
-                while j > 0:
+                while j > 0 and heap[(j - 1) // 2] > heap[j]:
                     par = (j - 1) // 2
-                    if heap[par] > heap[j]:
-                        tmp = heap[par]
-                        heap[par] = heap[j]
-                        heap[j] = tmp
-                        j = par
-                    else:
-                        break
+                    heap[par], heap[j] = heap[j], heap[par]
+                    j = par
     return out
 
 
@@ -947,6 +933,15 @@ def segment_swap(t, S, st, max_len, touched):
 
 # ---------------------------------------------------------------- the genetic algorithm
 @njit
+def _store(pop_t, pop_c, pop_cost, i, t, c, pos, S, P):
+    """Entries by the DP, full improvement, then individual i := (t, c)."""
+    dp_full(t, c, S, P)
+    pop_cost[i] = improve(t, c, pos, t, S, P, True)
+    pop_t[i] = t
+    pop_c[i] = c
+
+
+@njit
 def init_island(pop_t, pop_c, pop_cost, seed_t, seed_c, use_seed, S, P, st):
     """Fill a population: individual 0 = the given seed tour (when use_seed)
     or a randomised nearest-neighbour tour, the others randomised
@@ -959,10 +954,7 @@ def init_island(pop_t, pop_c, pop_cost, seed_t, seed_c, use_seed, S, P, st):
             c = seed_c.copy()
         else:
             t, c = random_nn(S, P, st, 3)
-        dp_full(t, c, S, P)
-        pop_cost[i] = improve(t, c, pos, t, S, P, True)
-        pop_t[i] = t
-        pop_c[i] = c
+        _store(pop_t, pop_c, pop_cost, i, t, c, pos, S, P)
 
 
 @njit
@@ -1094,7 +1086,4 @@ def evolve(pop_t, pop_c, pop_cost, stats, n_gens, S, P, st, full_dp, p_cross,
                                       st, touched)
                 else:
                     t, c = random_nn(S, P, st, 3)
-                dp_full(t, c, S, P)
-                pop_cost[i] = improve(t, c, pos, t, S, P, True)
-                pop_t[i] = t
-                pop_c[i] = c
+                _store(pop_t, pop_c, pop_cost, i, t, c, pos, S, P)
