@@ -942,16 +942,27 @@ def _store(pop_t, pop_c, pop_cost, i, t, c, pos, S, P):
 
 
 @njit
-def init_island(pop_t, pop_c, pop_cost, seed_t, seed_c, use_seed, S, P, st):
+def init_island(pop_t, pop_c, pop_cost, seed_t, seed_c, use_seed, S, P, st, cheap_k):
     """Fill a population: individual 0 = the given seed tour (when use_seed)
     or a randomised nearest-neighbour tour, the others randomised
-    nearest-neighbour tours; each improved by :func:`improve`."""
+    nearest-neighbour tours, each fully improved by :func:`improve`.  With
+    ``cheap_k > 0`` (large jobs) the others are instead individual 0 with
+    ``cheap_k`` items ruined and recreated, improved around those items only."""
     npop, m = pop_t.shape
     pos = np.empty(m, dtype=np.int64)
+    touched = np.empty(m, dtype=np.int64)
     for i in range(npop):
         if i == 0 and use_seed:
             t = seed_t.copy()
             c = seed_c.copy()
+        elif i > 0 and cheap_k > 0:
+            c = pop_c[0].copy()
+            k = min(cheap_k, m - 1)
+            t = ruin_recreate(pop_t[0], c, k, rnd_int(st, 4), 0.1, S, P, st, touched)
+            pop_cost[i] = improve(t, c, pos, touched[:k].copy(), S, P, True)
+            pop_t[i] = t
+            pop_c[i] = c
+            continue
         else:
             t, c = random_nn(S, P, st, 3)
         _store(pop_t, pop_c, pop_cost, i, t, c, pos, S, P)
