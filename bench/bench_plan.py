@@ -37,6 +37,7 @@ import argparse
 import datetime
 import math
 import os
+import resource
 import sys
 
 import numpy as np
@@ -108,7 +109,7 @@ def fst_table(sizes, time_limit: float, with_ref: bool) -> str:
     return "\n".join(rows)
 
 
-def hide_table(time_limit: float, with_ref: bool) -> str:
+def hide_table(time_limit: float, with_ref: bool, generations=()) -> str:
     parts = leather_job(seed=1)
     rows = ["| plan | idle travel mm | vs drawing order | vs NN | wall s | CPU s |",
             "|---|---:|---:|---:|---:|---:|"]
@@ -126,6 +127,12 @@ def hide_table(time_limit: float, with_ref: bool) -> str:
         p, w, c = res[meth]
         idle = p.metrics["idle_mm"]
         rows.append(f"| {label} | {idle:.0f} | {100 * (idle / draw - 1):+.1f} % | "
+                    f"{100 * (idle / nn - 1):+.1f} % | {w:.2f} | {c:.2f} |")
+    for g in generations:
+        p, w, c = clock(lambda: plan(parts, [], PlanOptions(method="ga", time_limit=3600, seed=1,
+                                                            max_iterations=g)))
+        idle = p.metrics["idle_mm"]
+        rows.append(f"| GA, {g} generations (any machine) | {idle:.0f} | {100 * (idle / draw - 1):+.1f} % | "
                     f"{100 * (idle / nn - 1):+.1f} % | {w:.2f} | {c:.2f} |")
     inst = instance_for(parts, 20.0)
     if with_ref and HAVE_ELKAI:
@@ -159,10 +166,12 @@ def scaling_table(sizes, time_for, a) -> str:
     """GA against NN, the independent references (LKH-3 Noon-Bean, PyVRP) and
     LKH + DP polishing, per size; ``a`` holds the command-line limits."""
     rows = ["| contours | candidates | NN idle | GA idle | GA vs NN | GA wall s | GA CPU s | GA generations "
+            "| GA, 20x time | GA vs 20x | peak RSS MB "
             "| LKH-3 Noon–Bean + DP | its CPU s | GA vs LKH-3 | LKH-3 strong | its CPU s | GA vs strong "
             "| PyVRP groups | GA vs PyVRP "
             "| LKH + DP polishing | GA vs polishing | lower bound |",
-            "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+            "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:"
+            "|---:|---:|---:|"]
     for m in sizes:
         size = 1000.0 * math.sqrt(m / 62.0)
         parts = leather_job(seed=m, n_parts=m, n_holes=0, size=size)
@@ -175,6 +184,11 @@ def scaling_table(sizes, time_for, a) -> str:
 
         def gap(ref):
             return f"{100 * (ga / ref - 1):+.2f} %"
+        long_s = long_gap = "—"
+        if m in a.long_sizes:
+            r20 = run_ga(inst, time_limit=20 * tl, seed=1)
+            long_s, long_gap = f"{r20.cost:.0f} ({r20.stopped_by})", gap(r20.cost)
+        rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
         nb = nb_c = nb_gap = st = st_c = st_gap = pv = pv_gap = pol = pol_gap = "—"
         if HAVE_ELKAI and m <= a.nb_max:
             period = f"INITIAL_PERIOD = {a.nb_period}\n" if a.nb_period else ""
@@ -193,7 +207,8 @@ def scaling_table(sizes, time_for, a) -> str:
             pol, pol_gap = f"{ref:.0f}", gap(ref)
         lb, _ = lower_bound(inst, ga, time_budget=5.0, max_items_hk=1200)
         rows.append(f"| {m} | {inst.n - 1} | {nn:.0f} | {ga:.0f} | {100 * (ga / nn - 1):+.1f} % | "
-                    f"{w:.1f} | {c:.1f} | {r.iterations} ({r.stopped_by}) | {nb} | {nb_c} | {nb_gap} | "
+                    f"{w:.1f} | {c:.1f} | {r.iterations} ({r.stopped_by}) | {long_s} | {long_gap} | "
+                    f"{rss:.0f} | {nb} | {nb_c} | {nb_gap} | "
                     f"{st} | {st_c} | {st_gap} | "
                     f"{pv} | {pv_gap} | {pol} | {pol_gap} | {lb:.0f} |")
         print(rows[-1], file=sys.stderr, flush=True)
@@ -218,12 +233,17 @@ def main() -> None:
     ap.add_argument("--pyvrp-max", type=int, default=500, help="largest size given PyVRP")
     ap.add_argument("--pyvrp-time", type=float, default=60.0, help="PyVRP wall seconds")
     ap.add_argument("--skip-hide", action="store_true")
+    ap.add_argument("--hide-iterations", default="",
+                    help="also plan the hide job with these GA generation budgets, e.g. 25,50,100")
+    ap.add_argument("--long-sizes", default="1000,5000",
+                    help="sizes also given 20x the GA time (the 'same search, more time' reference)")
     ap.add_argument("--fst", default="200,400,1000", help="GTSPLIB-style node counts ('' = skip)")
     ap.add_argument("--fst-time", type=float, default=10.0)
     a = ap.parse_args()
     if a.no_ref:
         a.ref_max = a.nb_max = a.strong_max = a.pyvrp_max = 0
-    sizes = [int(s) for s in a.sizes.split(",")]
+    sizes = [int(s) for s in a.sizes.split(",") if s]
+    a.long_sizes = [int(s) for s in a.long_sizes.split(",") if s]
     if a.quick:
         sizes = [s for s in sizes if s <= 500]
 
@@ -231,17 +251,20 @@ def main() -> None:
         return max(2.0, a.time * m / 1000.0) if m <= 1000 else a.time * m / 1000.0
 
     print(f"# bench_plan.py — {datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, "
-          f"elkai {'present' if HAVE_ELKAI else 'absent'}, pyvrp {'present' if HAVE_PYVRP else 'absent'}\n")
+          f"elkai {'present' if HAVE_ELKAI else 'absent'}, pyvrp {'present' if HAVE_PYVRP else 'absent'}, "
+          f"load average {os.getloadavg()[0]:.1f}\n")
     if not a.skip_hide:
         print("## 62-part leather job\n")
-        print(hide_table(a.hide_time, not a.no_ref))
+        print(hide_table(a.hide_time, not a.no_ref,
+                         [int(g) for g in a.hide_iterations.split(",") if g]))
         print()
     if a.fst:
         print("## GTSPLIB-style instances (solve_gtsp)\n")
         print(fst_table([int(v) for v in a.fst.split(",")], a.fst_time, not a.no_ref))
         print()
-    print("## Scaling (GA time limit = %g s x contours / 1000, min 2 s)\n" % a.time)
-    print(scaling_table(sizes, time_for, a))
+    if sizes:
+        print("## Scaling (GA time limit = %g s x contours / 1000, min 2 s)\n" % a.time)
+        print(scaling_table(sizes, time_for, a))
 
 
 if __name__ == "__main__":

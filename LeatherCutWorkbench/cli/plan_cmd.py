@@ -64,6 +64,11 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    metavar="MM_MIN", help="cutting speed for the time estimate (default 6000 mm/min)")
     g.add_argument("--accel", dest="plan_accel", type=positive, default=None, metavar="MM_S2",
                    help="acceleration for the time estimate (default 1000 mm/s^2)")
+    g.add_argument("--objective", dest="plan_objective", choices=("distance", "time"),
+                   default="distance",
+                   help="what the order search minimises: distance = idle travel in mm (default), "
+                        "time = idle seconds with the rapid speed, acceleration, knife lift time and "
+                        "(tangential knife) blade turns between contours")
     g.add_argument("--no-open-chains", dest="plan_no_open_chains", action="store_true",
                    help="do not cut open chains (lines that are neither contours nor lead-ins)")
 
@@ -76,7 +81,8 @@ def options_from_args(args: argparse.Namespace, machine: Any = None):
     o = PlanOptions(method=args.plan_method, time_limit=args.plan_time,
                     max_iterations=args.plan_iterations,
                     seed=getattr(args, "seed", 1), entry_spacing=args.plan_entry_spacing,
-                    cut_open_chains=not args.plan_no_open_chains)
+                    cut_open_chains=not args.plan_no_open_chains,
+                    objective=getattr(args, "plan_objective", "distance"))
     if machine is not None:
         o.rapid_speed = float(getattr(machine, "rapid_feed", o.rapid_speed))
         o.cut_speed = float(getattr(machine, "cut_feed", o.cut_speed))

@@ -19,7 +19,7 @@ from typing import Callable, List, Optional
 import numpy as np
 
 from .dp import optimal_entries
-from .ga import SearchResult, stop_reason
+from .result import SearchResult, stop_reason
 from .instance import Instance
 from .localsearch import improve
 from .nn import nearest_neighbour

@@ -2,13 +2,29 @@
 
 from __future__ import annotations
 
-from typing import List, Sequence
+from typing import List, Sequence, Tuple
 
 import numpy as np
 
 from ..errors import InputError
 from .ga import run_ga
 from .instance import MatrixInstance
+
+
+def gtsp_instance(D: np.ndarray, clusters: Sequence[Sequence[int]]) -> Tuple[MatrixInstance, np.ndarray]:
+    """The routing instance of a GTSP on matrix ``D``: candidate j is node
+    ``node_of[j]``; the smallest cluster becomes the anchor (item 0) -- the
+    DP closes the cycle over the anchor's candidates, so a small anchor is
+    cheapest."""
+    order = sorted(range(len(clusters)), key=lambda k: (len(clusters[k]), k))
+    new_clusters, item_nodes, off = [], [], 0
+    for k in order:
+        sz = len(clusters[k])
+        new_clusters.append(list(range(off, off + sz)))
+        item_nodes.extend(int(v) for v in clusters[k])
+        off += sz
+    node_of = np.array(item_nodes)
+    return MatrixInstance(D, new_clusters, start_node=node_of, end_node=node_of), node_of
 
 
 def solve_gtsp(dist: np.ndarray, clusters: Sequence[Sequence[int]], *,
@@ -29,23 +45,10 @@ def solve_gtsp(dist: np.ndarray, clusters: Sequence[Sequence[int]], *,
     flat = [int(v) for c in clusters for v in c]
     if len(set(flat)) != len(flat) or min(flat) < 0 or max(flat) >= D.shape[0]:
         raise InputError("clusters must be disjoint lists of valid node indices")
-    # the smallest cluster becomes the anchor (item 0): the DP closes the
-    # cycle over the anchor's candidates, so a small anchor is cheapest
-    order = sorted(range(len(clusters)), key=lambda k: (len(clusters[k]), k))
-    nodes = np.array(flat)
-    new_clusters, off = [], 0
-    item_nodes = []
-    for k in order:
-        sz = len(clusters[k])
-        new_clusters.append(list(range(off, off + sz)))
-        item_nodes.extend(int(v) for v in clusters[k])
-        off += sz
-    node_of = np.array(item_nodes)
-    inst = MatrixInstance(D, new_clusters, start_node=node_of, end_node=node_of)
+    inst, node_of = gtsp_instance(D, clusters)
     res = run_ga(inst, time_limit=time_limit, seed=seed)
     tour_nodes = [int(node_of[res.choice[it]]) for it in res.order]
     # rotate to start with clusters[0]
     first = set(int(v) for v in clusters[0])
     i0 = next(i for i, v in enumerate(tour_nodes) if v in first)
-    del nodes
     return tour_nodes[i0:] + tour_nodes[:i0]

@@ -125,7 +125,7 @@ def local_search(inst: Instance, t: List[int], c: List[int],
                 can_rev = False
             else:
                 can_rev = True
-            best = -EPS
+            best = EPS
             best_move = None
             ends = (s1,) if L == 1 else (s1, sL)
             for e in ends:

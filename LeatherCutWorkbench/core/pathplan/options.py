@@ -8,6 +8,7 @@ from typing import Optional
 from ..geometry import Point
 
 METHODS = ("ga", "aco", "nn")
+OBJECTIVES = ("distance", "time")
 
 
 @dataclass
@@ -33,6 +34,11 @@ class PlanOptions:
     * ``cut_open_chains``: cut open chains (not lead-ins) too.
     * ``common_edge_tol``: mm within which shared edges are matched.
     * ``bound_time``: seconds allowed for the lower bound.
+    * ``objective``: what the search minimises -- ``"distance"`` (idle travel,
+      mm; default) or ``"time"`` (idle seconds: trapezoidal rapid moves with
+      ``rapid_speed`` and ``accel``, ``lift_time_s`` per idle move and, with a
+      tangential knife, the blade turn at ``turn_speed`` degrees/s between
+      contours; see :mod:`.timecost`).
     """
 
     method: str = "ga"
@@ -50,3 +56,5 @@ class PlanOptions:
     cut_open_chains: bool = True
     common_edge_tol: float = 0.05
     bound_time: float = 1.0
+    objective: str = "distance"
+    turn_speed: float = 360.0

@@ -18,8 +18,9 @@ from .instance import EuclidInstance
 from .items import PlanItem, build_items
 from .metrics import plan_metrics
 from .nn import nearest_neighbour
-from .options import METHODS, PlanOptions
+from .options import METHODS, OBJECTIVES, PlanOptions
 from .precedence import violations
+from .timecost import time_instance
 
 
 def _check_options(o: PlanOptions) -> None:
@@ -37,6 +38,10 @@ def _check_options(o: PlanOptions) -> None:
         raise InputError("max_candidates must be at least 1")
     if o.max_iterations is not None and o.max_iterations < 1:
         raise InputError(f"plan iterations must be at least 1, got {o.max_iterations}")
+    if o.objective not in OBJECTIVES:
+        raise InputError(f"unknown plan objective {o.objective!r}; use one of {', '.join(OBJECTIVES)}")
+    if o.turn_speed < 0:
+        raise InputError(f"plan option turn_speed must not be negative, got {o.turn_speed!r}")
 
 
 def build_instance(items: Sequence[PlanItem], preds: Sequence[Sequence[int]],
@@ -86,8 +91,13 @@ def plan(parts: Sequence[Part], open_chains: Sequence[OpenChain],
         res = SearchResult(order, choice, cost, 1, cost, "converged")
     else:
         search = run_aco if options.method == "aco" else run_ga
-        res = search(inst, time_limit=options.time_limit, seed=options.seed,
+        target = inst if options.objective == "distance" else time_instance(inst, items, options)
+        res = search(target, time_limit=options.time_limit, seed=options.seed,
                      max_iterations=options.max_iterations, progress=prog)
+        if target is not inst:
+            # the bound and the NN baseline are idle distances (mm)
+            res.cost = inst.tour_cost(res.order, res.choice)
+            res.nn_cost = inst.tour_cost(*nearest_neighbour(inst))
     bad = violations(res.order, inst.preds)
     if bad:
         raise LeatherCutError(f"internal error: planned order breaks {bad} precedence rule(s)")
@@ -124,6 +134,7 @@ def _metrics(out: CutPlan, o: PlanOptions, drawing: float, nn: float, lb: float,
         "idle_saving_vs_drawing_order": round(1.0 - idle / drawing, 4) if drawing > 0 else None,
         "precedence_violations": 0,
         "method": o.method,
+        "objective": o.objective,
         "seed": o.seed,
         "time_s": round(time.perf_counter() - t0, 3),
         "cpu_s": round(time.process_time() - c0, 3),
