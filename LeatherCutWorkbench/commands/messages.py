@@ -39,6 +39,7 @@ OPTION_TEXT: List[Tuple[str, str]] = [
     (r"--strip W", "a strip (Auto-nest)"),
     (r"--engine own", "Engine = own (Auto-nest)"),
     (r"--resume-from", "Resume from (Send to cutter)"),
+    (r"--confirm-work-zero", "'The work zero was set again at the machine' ticked (Send to cutter)"),
     (r"--journal file", "journal file"),
 ]
 _COMPILED = [(re.compile(a), b) for a, b in OPTION_TEXT]

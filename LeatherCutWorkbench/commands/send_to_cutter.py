@@ -62,8 +62,11 @@ class SendSession:
     and ``leathercut send`` behave identically."""
 
     def __init__(self, gcode_path: str, machine: str, url: str, check_first: bool,
-                 mode: str, resume_from: str = ""):
+                 mode: str, resume_from: str = "", confirm_work_zero: bool = False):
+        """``confirm_work_zero``: the operator set the work zero again at the
+        machine, so a resume after a lost position may go on without homing."""
         self.gcode_path = gcode_path
+        self.confirm_work_zero = confirm_work_zero
         self.machine = machine
         self.url = url
         self.check_first = check_first
@@ -108,7 +111,8 @@ class SendSession:
                                        url, journal_path(self.gcode_path), mode=self.mode,
                                        check=self.check_first,
                                        resume_from=self.resume_from or None,
-                                       progress=self._on_progress)
+                                       progress=self._on_progress,
+                                       confirm_work_zero=self.confirm_work_zero)
             self.state = "greeting"
             out = self.session.run()
             if out.controller is not None:
@@ -188,6 +192,7 @@ class SendPanel:
             self.choices.addItem(translate("LeatherCut", "{0} – dry run, no machine").format(url), url)
         self.choices.activated.connect(self._choose_port)
         self.check = self.form.findChild(QtGui.QCheckBox, "checkFirst")
+        self.confirm_zero = self.form.findChild(QtGui.QCheckBox, "confirmWorkZero")
         self.mode = self.form.findChild(QtGui.QComboBox, "streamMode")
         self.resume = self.form.findChild(QtGui.QComboBox, "resumeFrom")
         self.bar = self.form.findChild(QtGui.QProgressBar, "progressBar")
@@ -261,7 +266,8 @@ class SendPanel:
             with base.transaction(self.job.Document, "LeatherCut: port"):
                 self.job.PostPort = url
         self.session = SendSession(self.gcode, self.job.PostMachine, url, self.check.isChecked(),
-                                   self.mode.currentText(), self.resume.currentData() or "")
+                                   self.mode.currentText(), self.resume.currentData() or "",
+                                   confirm_work_zero=self.confirm_zero.isChecked())
         self.logged = 0
         self.log.clear()
         self.session.start()

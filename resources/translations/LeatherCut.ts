@@ -297,7 +297,7 @@
 <context>
     <name>LeatherCut</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="206"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="211"/>
         <source>(post-process the job first)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -332,7 +332,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="184"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="188"/>
         <source>Choose a port…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -392,7 +392,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="252"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="257"/>
         <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23), or choose emulator:grblhal for a dry run.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,7 +572,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="248"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="253"/>
         <source>Post-process the job as G-code first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,7 +622,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="342"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="348"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,12 +642,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="316"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="322"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="303"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="309"/>
         <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -752,7 +752,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="226"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="231"/>
         <source>start of the job</source>
         <translation type="unfinished"></translation>
     </message>
@@ -837,7 +837,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="188"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="192"/>
         <source>{0} – dry run, no machine</source>
         <translation type="unfinished"></translation>
     </message>
@@ -862,7 +862,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="296"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="302"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1072,12 +1072,12 @@
 <context>
     <name>LeatherCut_SendToCutter</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="329"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="335"/>
         <source>Send to cutter…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="330"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="336"/>
         <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1422,6 +1422,10 @@
     </message>
     <message>
         <source>Streaming</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>The work zero was set again at the machine (needed to resume after a lost position on a machine that does not home)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>

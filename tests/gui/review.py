@@ -248,13 +248,19 @@ def steps():
     check_fits("Send to cutter", p.form)
     check("emulator offered", p.choose_port("emulator:grblhal") and p.port.text() == "emulator:grblhal",
           [p.choices.itemText(i) for i in range(p.choices.count())])
+    p.confirm_zero.setChecked(True)
     session = p.start()
+    check("work zero confirmation taken from the panel", session is not None and
+          session.confirm_work_zero, "not passed")
     t0 = time.monotonic()
     while session is not None and session.running and time.monotonic() - t0 < 60:
         pump(0.1)
     pump(0.3)
     check("dry run on the emulator", session is not None and session.result is not None and session.result.ok,
           session.error if session else p.status.text())
+    check("the link session got the work zero confirmation",
+          session is not None and session.session is not None and session.session.confirm_work_zero,
+          "not passed")
     p.reject()
 
     p = command_panel("LeatherCut_MachineProfiles")
