@@ -9,29 +9,15 @@ refused too: an empty ``job.nc`` would look like a finished job.
 
 from __future__ import annotations
 
-import os
-import stat
 from typing import Any
 
 from ..core.errors import InputError
 
-_KINDS = ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
-          (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
-          (stat.S_ISSOCK, "a socket"))
-
-
 def check_output_path(path: str) -> None:
-    """InputError when ``path`` exists and is not a regular file."""
-    try:
-        mode = os.stat(path).st_mode
-    except FileNotFoundError:
-        return
-    except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror or exc}", source=path) from exc
-    if stat.S_ISREG(mode):
-        return
-    what = next((w for test, w in _KINDS if test(mode)), "not a regular file")
-    raise InputError(f"is {what}: job files are only written as regular files", source=path)
+    """InputError when ``path`` exists and is not a regular file (checked before
+    any stage runs; :func:`post.jobfile.refuse_special` is the one rule)."""
+    from ..post.jobfile import refuse_special
+    refuse_special(path)
 
 
 def require_cut_items(result: Any, path: str) -> None:

@@ -88,24 +88,26 @@ def check_sealed(data: bytes, path: str, allow_unsealed: bool = False) -> None:
                          "or damaged and is not streamed; post the job again", source=path)
 
 
-def _refuse_special(path: str) -> str:
-    """The real path to replace; refuses an existing non-regular file."""
+_KINDS = ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO (named pipe)"),
+          (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+          (stat.S_ISSOCK, "a socket"))
+
+
+def refuse_special(path: str) -> str:
+    """The real path to replace; InputError when ``path`` exists and is not a
+    regular file (a directory, FIFO, device or socket is never replaced nor
+    written into).  ``leathercut post`` / ``run`` call it before planning too."""
     real = os.path.realpath(path)
     try:
         st = os.stat(real)
     except FileNotFoundError:
         return real
     except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror}", source=path)
-    if stat.S_ISDIR(st.st_mode):
-        raise InputError("cannot write: it is a folder", source=path)
+        raise InputError(f"cannot write: {exc.strerror or exc}", source=path)
     if not stat.S_ISREG(st.st_mode):
-        kind = ("a character device" if stat.S_ISCHR(st.st_mode) else
-                "a FIFO" if stat.S_ISFIFO(st.st_mode) else
-                "a block device" if stat.S_ISBLK(st.st_mode) else
-                "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
+        kind = next((w for test, w in _KINDS if test(st.st_mode)), "not a regular file")
         raise InputError(f"cannot write: the path is {kind}, not a regular file; "
-                         "LeatherCut never replaces it", source=path)
+                         "LeatherCut only writes job files as regular files", source=path)
     return real
 
 
@@ -113,7 +115,7 @@ def write_file(path: str, data: Union[str, bytes], encoding: str = "utf-8") -> N
     """Write ``data`` to ``path`` atomically (see the module docstring);
     raises InputError naming the path when it cannot."""
     raw = data.encode(encoding) if isinstance(data, str) else data
-    real = _refuse_special(path)
+    real = refuse_special(path)
     folder = os.path.dirname(real) or "."
     try:
         fd, tmp = tempfile.mkstemp(dir=folder, prefix="." + os.path.basename(real) + ".",
