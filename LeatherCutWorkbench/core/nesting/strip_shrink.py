@@ -82,13 +82,6 @@ class _Instance:
         self.scale = s = max(GRID_UNITS / max(max(dims + [length]), 1e-9), 10.0 / options.tolerance)
         self.pieces = pieces
         half_gap = options.spacing / 2.0
-        if half_gap > 0:
-            # make_variants allows one arc tolerance of sag for the round joins of the
-            # spacing offset, but pyclipper rounds the number of chord steps, so a
-            # 90-degree corner may get one chord and sag ~2.25 x that tolerance (the
-            # separator finds such corner-to-corner contacts): grow by the rest
-            join_tol = max([options.chord_tol, 0.01 * half_gap] + [t.tol for t in pieces])
-            half_gap += 1.5 * join_tol
         self.variants = make_variants(pieces, s, half_gap, options.chord_tol)
         self.choices = [[v.index for v in self.variants if v.type_index == t] for t in range(len(pieces))]
         core = [np.asarray(v.core, dtype=np.float64) for v in self.variants]
