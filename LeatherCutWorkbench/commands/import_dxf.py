@@ -10,6 +10,7 @@ import FreeCAD
 import FreeCADGui as Gui
 from PySide import QtGui
 
+from ..core.readable import readable_number
 from ..document import objects, pipeline
 from . import base, messages, panel
 
@@ -67,7 +68,7 @@ def import_findings(drawing) -> List[Tuple[str, str]]:
     out = []
     if size:
         out.append(("info", translate("LeatherCut", "Drawing size {0} × {1} mm, units {2} ({3})").format(
-            messages.readable_number(size[0]), messages.readable_number(size[1]),
+            readable_number(size[0]), readable_number(size[1]),
             drawing.units, translate("LeatherCut", UNIT_SOURCES.get(drawing.units_source, drawing.units_source)))))
     if drawing.pieces:
         out.append(("info", translate("LeatherCut", "{0} pattern pieces").format(len(drawing.pieces))))

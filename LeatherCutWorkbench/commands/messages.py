@@ -13,6 +13,8 @@ from __future__ import annotations
 import re
 from typing import List, Tuple
 
+from ..core.readable import readable_area
+
 #: (CLI wording, GUI wording), most specific first; applied in order.
 OPTION_TEXT: List[Tuple[str, str]] = [
     (r"with --move-to-origin MM, or nest it with --sheet/--hide",
@@ -46,18 +48,6 @@ _COMPILED = [(re.compile(a), b) for a, b in OPTION_TEXT]
 #: a CLI option left over: ``--foo-bar`` -> ``'foo bar'``
 _ANY_OPTION = re.compile(r"(?<![\w-])--([a-z][a-z0-9]*(?:-[a-z0-9]+)*)")
 _AREA = re.compile(r"(-?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?) ?mm(?:2|\^2|²)")
-
-
-def readable_number(value: float) -> str:
-    """``41410.3`` -> ``41 410``; below 100 three significant digits (``2.41``)."""
-    if abs(value) >= 100.0:
-        return f"{value:,.0f}".replace(",", " ")
-    return f"{value:.3g}"
-
-
-def readable_area(value: float) -> str:
-    """An area in mm² as people write it: ``41 410 mm²``."""
-    return f"{readable_number(value)} mm²"
 
 
 def for_gui(text: str) -> str:

@@ -30,18 +30,11 @@ from typing import List, Optional, Sequence
 
 from .errors import InputError
 from .model import Finding, Layout, Part
+from .readable import readable_area
 
 _AREA = re.compile(r"(-?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?) ?mm2")
 #: at most this many findings are quoted in the refusal (all are in the findings)
 QUOTED = 5
-
-
-def readable_area(value: float) -> str:
-    """An area in mm² as people write it: ``41410.3`` -> ``41 410 mm²``,
-    below 100 three significant digits (``2.41 mm²``)."""
-    if abs(value) >= 100.0:
-        return f"{value:,.0f}".replace(",", " ") + " mm²"
-    return f"{value:.3g} mm²"
 
 
 def layout_findings(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,
