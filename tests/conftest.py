@@ -37,3 +37,14 @@ def data_dir() -> str:
 def samples_dir() -> str:
     """tests/data/samples: real DXF files from public projects (licences in README.md)."""
     return SAMPLES_DIR
+
+
+@pytest.fixture
+def doc():
+    """A fresh FreeCAD document, closed after the test (if the test left it open)."""
+    import FreeCAD
+    d = FreeCAD.newDocument("LCTest")
+    name = d.Name
+    yield d
+    if name in FreeCAD.listDocuments():
+        FreeCAD.closeDocument(name)

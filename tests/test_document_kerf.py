@@ -20,13 +20,6 @@ BAG = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                    "examples", "bag.dxf")
 
 
-@pytest.fixture
-def doc():
-    d = FreeCAD.newDocument("LCKerf")
-    yield d
-    FreeCAD.closeDocument(d.Name)
-
-
 def _flame_job(doc, out):
     job = pipeline.make_job(doc, "Job", BAG)
     job.PostMachine = "flame_plasma"

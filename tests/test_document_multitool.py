@@ -21,15 +21,6 @@ from drag_sim import drawn_lines, simulate, split_deviation, swivel_corners  # n
 from test_post_multitool import MACHINE, hide_dxf, one_size, trace  # noqa: E402
 
 
-@pytest.fixture
-def doc():
-    d = FreeCAD.newDocument("LCTools")
-    name = d.Name
-    yield d
-    if name in FreeCAD.listDocuments():
-        FreeCAD.closeDocument(name)
-
-
 def test_multitool_leather_job_from_the_workbench(doc, tmp_path):
     job = pipeline.make_job(doc, "Job", one_size(tmp_path))
     job.NestContainer, job.NestHideFile = "hide", hide_dxf(tmp_path)

@@ -38,15 +38,6 @@ AAMA = os.path.join(SAMPLES_DIR, "WM_SLIM_TANK.DXF")
 PLAN_CLI = ["--plan-method", "nn", "--plan-time", "1"]
 
 
-@pytest.fixture
-def doc():
-    d = FreeCAD.newDocument("LCOneSource")
-    name = d.Name
-    yield d
-    if name in FreeCAD.listDocuments():
-        FreeCAD.closeDocument(name)
-
-
 def _job(doc, path, out_dir):
     job = pipeline.make_job(doc, "Job", path)
     job.PlanMethod, job.PlanTimeLimit = "nn", 1.0
