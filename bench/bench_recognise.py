@@ -22,6 +22,7 @@ the load average.
 
 from __future__ import annotations
 
+import argparse
 import os
 import statistics
 import sys
@@ -70,7 +71,9 @@ def timed(fn, runs: int = RUNS):
 
 
 def main() -> int:
-    quick = "--quick" in sys.argv
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="1,000 and 2,000 parts only")
+    quick = ap.parse_args().quick
     sizes = [1000, 2000] if quick else [1000, 2000, 5000, 10000]
     rows = []
     load0 = os.getloadavg()
