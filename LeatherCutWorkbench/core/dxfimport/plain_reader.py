@@ -154,32 +154,71 @@ def read_plain(data: bytes) -> Optional[PlainDocument]:
         if b"\r" in data:
             return None
     try:
-        return _Parser().parse(_pairs(data))
+        return _Parser().parse(_Stream(data))
     except (_NotPlain, ValueError, IndexError, StopIteration):   # truncated or odd: ezdxf decides
         return None
 
 
-def _pairs(data: bytes) -> Iterator[Tuple[int, str]]:
-    """(group code, value) pairs of ``data``, read in chunks of lines."""
+def _chunks(data: bytes) -> Iterator[Tuple[List[int], List[str]]]:
+    """(group codes, values) of ``data``, a few MiB of lines at a time."""
     pos, n = 0, len(data)
-    carry: Optional[bytes] = None
+    carry: Optional[str] = None
     while pos < n:
         end = data.find(b"\n", min(pos + _CHUNK_BYTES, n - 1))
         if end < 0:
             end = n
-        lines = data[pos:end].split(b"\n")
+        lines = data[pos:end].decode("ascii").split("\n")
         pos = end + 1
         if carry is not None:
             lines.insert(0, carry)
             carry = None
         if len(lines) % 2:
             carry = lines.pop()
-        codes = lines[0::2]
-        values = lines[1::2]
-        for code, value in zip(codes, values):
-            yield int(code), value.decode("ascii")
+        yield list(map(int, lines[0::2])), lines[1::2]
     if carry is not None and carry.strip():
         raise _NotPlain("odd number of lines")
+
+
+class _Stream:
+    """The (group code, value) pairs of a file: one by one, or up to the next
+    group code 0 (an entity's tags) with a C-level search."""
+
+    def __init__(self, data: bytes):
+        self._chunks = _chunks(data)
+        self.codes: List[int] = []
+        self.values: List[str] = []
+        self.i = 0
+
+    def _more(self) -> bool:
+        for codes, values in self._chunks:
+            self.codes = self.codes[self.i:] + codes
+            self.values = self.values[self.i:] + values
+            self.i = 0
+            return True
+        return False
+
+    def __iter__(self) -> "_Stream":
+        return self
+
+    def __next__(self) -> Tuple[int, str]:
+        while self.i >= len(self.codes):
+            if not self._more():
+                raise StopIteration
+        i = self.i
+        self.i = i + 1
+        return self.codes[i], self.values[i]
+
+    def until_zero(self) -> Tuple[List[int], List[str]]:
+        """Codes and values up to (not including) the next group code 0."""
+        while True:
+            try:
+                j = self.codes.index(0, self.i)
+            except ValueError:
+                if not self._more():
+                    raise _NotPlain("not closed") from None
+                continue
+            i, self.i = self.i, j
+            return self.codes[i:j], self.values[i:j]
 
 
 class _Parser:
@@ -190,8 +229,7 @@ class _Parser:
         self.layers: List[str] = []
         self.entities: List[PlainEntity] = []
 
-    def parse(self, pairs: Iterator[Tuple[int, str]]) -> PlainDocument:
-        pending: Optional[Tuple[int, str]] = None
+    def parse(self, pairs: _Stream) -> PlainDocument:
         for code, value in pairs:
             if (code, value) == (0, "EOF"):
                 break
@@ -200,8 +238,7 @@ class _Parser:
             code, name = next(pairs)
             if code != 2:
                 raise _NotPlain("section without name")
-            pending = self._section(name, pairs)
-            if pending != (0, "ENDSEC"):
+            if self._section(name, pairs) != (0, "ENDSEC"):
                 raise _NotPlain("section not closed")
         if "$ACADVER" in self.header and self.header["$ACADVER"] not in _VERSIONS:
             raise _NotPlain("DXF version ezdxf would upgrade")
@@ -214,7 +251,7 @@ class _Parser:
                 self.layers.append(required)
         return PlainDocument(self.entities, self.header, self.layers)
 
-    def _section(self, name: str, pairs: Iterator[Tuple[int, str]]) -> Tuple[int, str]:
+    def _section(self, name: str, pairs: _Stream) -> Tuple[int, str]:
         if name == "HEADER":
             return self._header(pairs)
         if name == "TABLES":
@@ -230,7 +267,7 @@ class _Parser:
             raise _NotPlain("section not closed")
         raise _NotPlain(f"unknown section {name}")
 
-    def _header(self, pairs: Iterator[Tuple[int, str]]) -> Tuple[int, str]:
+    def _header(self, pairs: _Stream) -> Tuple[int, str]:
         var = ""
         for code, value in pairs:
             if code == 0:
@@ -245,7 +282,7 @@ class _Parser:
                 self.header[var] = int(value)
         raise _NotPlain("header not closed")
 
-    def _tables(self, pairs: Iterator[Tuple[int, str]]) -> Tuple[int, str]:
+    def _tables(self, pairs: _Stream) -> Tuple[int, str]:
         table, record = "", ""
         for code, value in pairs:
             if code == 0:
@@ -262,7 +299,7 @@ class _Parser:
                 self.layers.append(value)
         raise _NotPlain("tables not closed")
 
-    def _blocks(self, pairs: Iterator[Tuple[int, str]]) -> Tuple[int, str]:
+    def _blocks(self, pairs: _Stream) -> Tuple[int, str]:
         for code, value in pairs:
             if code == 0 and value not in ("BLOCK", "ENDBLK"):
                 if value == "ENDSEC":
@@ -270,92 +307,119 @@ class _Parser:
                 raise _NotPlain("block content")
         raise _NotPlain("blocks not closed")
 
-    def _entities(self, pairs: Iterator[Tuple[int, str]]) -> Tuple[int, str]:
-        code, value = next(pairs)
+    def _entities(self, pairs: _Stream) -> Tuple[int, str]:
+        plans: Dict[Tuple, List[Tuple]] = {}
         append = self.entities.append
         while True:
+            code, dxftype = next(pairs)
             if code != 0:
                 raise _NotPlain("entity without type")
-            if value == "ENDSEC":
-                return code, value
-            dxftype = value
+            if dxftype == "ENDSEC":
+                return code, dxftype
             if dxftype not in PLAIN_TYPES:
                 raise _NotPlain(f"{dxftype} is not a plain entity")
-            tags: List[Tuple[int, str]] = []
-            for code, value in pairs:
-                if code == 0:
-                    break
-                tags.append((code, value))
-            else:
-                raise _NotPlain("entities not closed")
-            append(_build(dxftype, tags))
+            codes, values = pairs.until_zero()
+            key = (dxftype, *codes)
+            plan = plans.get(key)
+            if plan is None:
+                plan = plans[key] = _plan(dxftype, codes)
+            append(_make(dxftype, plan, values))
 
 
-def _build(dxftype: str, tags: List[Tuple[int, str]]) -> PlainEntity:
-    """The entity of type ``dxftype`` from its tags (after the ``0 TYPE`` pair)."""
-    attrs: Dict[str, Any] = {}
+def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
+    """How to read an entity of type ``dxftype`` whose tags have these group
+    codes: steps (op, attribute, value indexes).  Everything that depends on
+    the codes alone (unknown or repeated codes, incomplete points, required
+    attributes) is checked here, once per distinct code sequence."""
     floats = _FLOATS[dxftype]
     points = _POINTS[dxftype]
     lw = dxftype == "LWPOLYLINE"
-    rows: List[List[float]] = []
-    count = -1
-    i, n = 0, len(tags)
+    steps: List[Tuple] = []
+    names: set = set()
+
+    def once(name: str) -> None:
+        if name in names:
+            raise _NotPlain(f"{name} repeated")
+        names.add(name)
+
+    i, n = 0, len(codes)
     while i < n:
-        code, value = tags[i]
-        i += 1
+        code = codes[i]
         if code in points or code == 210:
             name = points.get(code, "extrusion")
-            if name in attrs or i >= n or tags[i][0] != code + 10:
-                raise _NotPlain("point repeated or without y")
-            x, y = float(value), float(tags[i][1])
-            i += 1
-            z = 0.0
-            if i < n and tags[i][0] == code + 20:
-                z = float(tags[i][1])
-                i += 1
-            attrs[name] = (x, y, z)
-        elif code in floats:
-            if floats[code] in attrs:
-                raise _NotPlain("value repeated")
-            attrs[floats[code]] = float(value)
-        elif code == 5:
-            if "handle" in attrs or not value or value != value.strip():
-                raise _NotPlain("bad handle")
-            attrs["handle"] = value
-        elif code == 8:
-            if "layer" in attrs or not value or value != value.strip():
-                raise _NotPlain("bad layer")
-            attrs["layer"] = value
+            once(name)
+            if i + 1 >= n or codes[i + 1] != code + 10:
+                raise _NotPlain("point without y")
+            iz = i + 2 if i + 2 < n and codes[i + 2] == code + 20 else -1
+            steps.append(("p", name, i, i + 1, iz))
+            i = i + 2 if iz < 0 else i + 3
+            continue
+        if code in floats:
+            once(floats[code])
+            steps.append(("f", floats[code], i))
+        elif code in (5, 8):
+            name = "handle" if code == 5 else "layer"
+            once(name)
+            steps.append(("s", name, i))
         elif code == 62:
-            if "color" in attrs:
-                raise _NotPlain("colour repeated")
-            attrs["color"] = int(value)
+            once("color")
+            steps.append(("i", "color", i))
         elif code == 67:
-            if int(value) != 0:
-                raise _NotPlain("paper space entity")
+            steps.append(("z", "", i))
         elif lw and code == 10:
-            if i >= n or tags[i][0] != 20:
+            if i + 1 >= n or codes[i + 1] != 20:
                 raise _NotPlain("vertex without y")
-            rows.append([float(value), float(tags[i][1]), 0.0, 0.0, 0.0])
-            i += 1
+            steps.append(("v", "", i, i + 1))
+            i += 2
+            continue
         elif lw and code in (40, 41, 42):
-            if not rows:
+            if not steps or steps[-1][0] not in ("v", "w"):
                 raise _NotPlain("vertex value before the first vertex")
-            rows[-1][code - 38] = float(value)   # 40, 41 widths, 42 bulge
+            steps.append(("w", "", i, code - 38))   # row columns 2, 3: widths, 4: bulge
         elif lw and code in (70, 90):
-            key = "flags" if code == 70 else "count"
-            if key in attrs:
-                raise _NotPlain("value repeated")
-            attrs[key] = int(value)
+            name = "flags" if code == 70 else "count"
+            once(name)
+            steps.append(("i", name, i))
         elif code not in _IGNORED:
             raise _NotPlain(f"group code {code} in {dxftype}")
-    if "handle" not in attrs or attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
-        raise _NotPlain("no handle, or an OCS")
+        i += 1
+    if "handle" not in names:
+        raise _NotPlain("no handle")
     for name in _REQUIRED[dxftype]:
-        if name not in attrs:
+        if name not in names:
             raise _NotPlain(f"{dxftype} without {name}")
+    return steps
+
+
+def _make(dxftype: str, plan: List[Tuple], values: List[str]) -> PlainEntity:
+    """The entity from its tag ``values`` read as ``plan`` says."""
+    attrs: Dict[str, Any] = {}
+    rows: List[List[float]] = []
+    for step in plan:
+        op = step[0]
+        if op == "p":
+            iz = step[4]
+            attrs[step[1]] = (float(values[step[2]]), float(values[step[3]]),
+                              float(values[iz]) if iz >= 0 else 0.0)
+        elif op == "s":
+            value = values[step[2]]
+            if not value or value != value.strip():
+                raise _NotPlain("empty handle or layer, or spaces around it")
+            attrs[step[1]] = value
+        elif op == "f":
+            attrs[step[1]] = float(values[step[2]])
+        elif op == "v":
+            rows.append([float(values[step[2]]), float(values[step[3]]), 0.0, 0.0, 0.0])
+        elif op == "w":
+            rows[-1][step[3]] = float(values[step[2]])
+        elif op == "i":
+            attrs[step[1]] = int(values[step[2]])
+        elif int(values[step[2]]) != 0:      # "z": group 67, paper space
+            raise _NotPlain("paper space entity")
+    if attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
+        raise _NotPlain("an OCS entity")
     e = PlainEntity(dxftype, Attribs())
-    if lw:
+    if dxftype == "LWPOLYLINE":
         if attrs.pop("count", len(rows)) != len(rows):
             raise _NotPlain("vertex count differs from the vertices")
         e.lwpoints = _LwPoints(rows)
