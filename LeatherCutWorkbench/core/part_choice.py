@@ -14,6 +14,7 @@ name, else the layer (:func:`display_name`).
 
 from __future__ import annotations
 
+import gc
 from dataclasses import dataclass, replace
 from typing import Dict, Iterable, List, Optional, Sequence
 
@@ -131,9 +132,15 @@ def apply_choices(rec: Recognition, choices: Dict[str, PartChoice]) -> Recogniti
     part's fields never changes ``rec``); contours, segments, marks and flags
     are shared, as no later stage changes them in place (a deep copy took as
     long as recognition itself on 250k parts)."""
-    out = replace(rec, parts=[_part_copy(p) for p in rec.parts],
-                  open_chains=list(rec.open_chains), flags=list(rec.flags),
-                  findings=list(rec.findings))
+    enabled = gc.isenabled()
+    gc.disable()   # the cyclic collector rescans the whole drawing: 0.59 s with, 0.09 s without (25k parts)
+    try:
+        out = replace(rec, parts=[_part_copy(p) for p in rec.parts],
+                      open_chains=list(rec.open_chains), flags=list(rec.flags),
+                      findings=list(rec.findings))
+    finally:
+        if enabled:
+            gc.enable()
     for p in out.parts:
         c = choices.get(p.id)
         if c is None:

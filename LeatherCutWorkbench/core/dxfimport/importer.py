@@ -27,6 +27,7 @@ from .extents import bounds, local_offset, translate
 from .limits import check_geometry
 from .options import ImportOptions
 from .pieces import build_pieces
+from .plain_reader import PlainDocument
 from .reader import open_dxf
 from .transform import scale_affine
 from .units import MM_PER_UNIT, aama_units, header_units, parse_units, plausibility_warning
@@ -88,7 +89,11 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     else:
         rules = Rules(options.layer_selection().role_of, lambda layer: "point")
     walker = Walker(doc, out, rules)
-    walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8)
+    plain = isinstance(doc, PlainDocument)
+    if plain:
+        doc.drop_entities()          # walked and freed one by one (peak memory)
+    walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8, consume=plain)
+    del entities, types
     out.finish()
     findings.extend(out.findings)
     paper = _paper_space_notes(doc, path, findings)

@@ -63,8 +63,8 @@ _REQUIRED: Dict[str, Tuple[str, ...]] = {
     "CIRCLE": ("center", "radius"), "POINT": ("location",), "LWPOLYLINE": (),
 }
 _Z_AXIS = (0.0, 0.0, 1.0)
-#: Lines split per step: bounds the memory of the split lines of a big file.
-_CHUNK_BYTES = 1 << 22
+#: Bytes of lines split per step: bounds the memory of the split lines of a big file.
+_CHUNK_BYTES = 1 << 18
 
 
 class _NotPlain(Exception):
@@ -143,6 +143,10 @@ class PlainDocument:
 
     def modelspace(self) -> List[PlainEntity]:
         return self._entities
+
+    def drop_entities(self) -> None:
+        """Forget the entities once converted (they are most of the memory)."""
+        self._entities = []
 
 
 def read_plain(data: bytes) -> Optional[PlainDocument]:
@@ -309,6 +313,7 @@ class _Parser:
 
     def _entities(self, pairs: _Stream) -> Tuple[int, str]:
         plans: Dict[Tuple, List[Tuple]] = {}
+        names: Dict[str, str] = {}
         append = self.entities.append
         while True:
             code, dxftype = next(pairs)
@@ -323,7 +328,7 @@ class _Parser:
             plan = plans.get(key)
             if plan is None:
                 plan = plans[key] = _plan(dxftype, codes)
-            append(_make(dxftype, plan, values))
+            append(_make(dxftype, plan, values, names))
 
 
 def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
@@ -391,8 +396,10 @@ def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
     return steps
 
 
-def _make(dxftype: str, plan: List[Tuple], values: List[str]) -> PlainEntity:
-    """The entity from its tag ``values`` read as ``plan`` says."""
+def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str]
+          ) -> PlainEntity:
+    """The entity from its tag ``values`` read as ``plan`` says; ``names`` keeps
+    one string object per layer name (a million entities share a few layers)."""
     attrs: Dict[str, Any] = {}
     rows: List[List[float]] = []
     for step in plan:
@@ -405,7 +412,7 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str]) -> PlainEntity:
             value = values[step[2]]
             if not value or value != value.strip():
                 raise _NotPlain("empty handle or layer, or spaces around it")
-            attrs[step[1]] = value
+            attrs[step[1]] = value if step[1] == "handle" else names.setdefault(value, value)
         elif op == "f":
             attrs[step[1]] = float(values[step[2]])
         elif op == "v":
@@ -424,5 +431,5 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str]) -> PlainEntity:
             raise _NotPlain("vertex count differs from the vertices")
         e.lwpoints = _LwPoints(rows)
         e.closed = bool(attrs.get("flags", 0) & 1)
-    e.dxf.__dict__.update(attrs)
+    e.dxf.__dict__ = attrs
     return e
