@@ -15,6 +15,7 @@ name, else the layer (:func:`display_name`).
 from __future__ import annotations
 
 import gc
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 from typing import Dict, Iterable, List, Optional, Sequence
 
@@ -118,9 +119,24 @@ def default_choices(parts: Sequence[Part], sample: str = "",
         keep = None
     else:
         keep = {sample if sample in graded else graded[0]}
-    return {p.id: PartChoice(include=keep is None or p.size in keep,
-                             quantity=max(1, int(p.quantity)))
-            for p in parts}
+    with _collector_paused():
+        return {p.id: PartChoice(include=keep is None or p.size in keep,
+                                 quantity=max(1, int(p.quantity)))
+                for p in parts}
+
+
+@contextmanager
+def _collector_paused():
+    """Pause the cyclic garbage collector: a new object per part would make it
+    rescan the whole drawing and recognition again and again (measured on 25k
+    parts: 0.59 s with it, 0.09 s without; 5.8 s on 250k parts)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def apply_choices(rec: Recognition, choices: Dict[str, PartChoice]) -> Recognition:
@@ -132,15 +148,10 @@ def apply_choices(rec: Recognition, choices: Dict[str, PartChoice]) -> Recogniti
     part's fields never changes ``rec``); contours, segments, marks and flags
     are shared, as no later stage changes them in place (a deep copy took as
     long as recognition itself on 250k parts)."""
-    enabled = gc.isenabled()
-    gc.disable()   # the cyclic collector rescans the whole drawing: 0.59 s with, 0.09 s without (25k parts)
-    try:
+    with _collector_paused():
         out = replace(rec, parts=[_part_copy(p) for p in rec.parts],
                       open_chains=list(rec.open_chains), flags=list(rec.flags),
                       findings=list(rec.findings))
-    finally:
-        if enabled:
-            gc.enable()
     for p in out.parts:
         c = choices.get(p.id)
         if c is None:
