@@ -40,3 +40,24 @@ def test_bulk_snapping_of_coordinates_too_far_apart_for_one_key_falls_back():
     pts = [(-1e9, -1e9), (1e9, 1e9), (1e9, 1e9 + 0.001), (0.5, 0.5)]
     one, bulk = NodeGrid(0.01), NodeGrid(0.01)
     assert bulk.nodes(pts) == [one.node(p) for p in pts] == [0, 1, 1, 2]
+
+
+def test_part_choices_copy_parts_and_lists_but_share_the_geometry():
+    from LeatherCutWorkbench.core.geometry import LineSeg
+    from LeatherCutWorkbench.core.model import Contour, Part, Recognition
+    from LeatherCutWorkbench.core.part_choice import PartChoice, apply_choices
+
+    segs = [LineSeg((0.0, 0.0), (1.0, 0.0)), LineSeg((1.0, 0.0), (0.0, 1.0)),
+            LineSeg((0.0, 1.0), (0.0, 0.0))]
+    part = Part("P1", Contour("C1", segs, "CUT"), holes=[Contour("C2", segs, "CUT")],
+                rotations=[0.0, 180.0])
+    rec = Recognition(parts=[part])
+    out = apply_choices(rec, {"P1": PartChoice(False, 3)})
+    copy = out.parts[0]
+    assert copy is not part and (copy.excluded, copy.quantity) == (True, 3)
+    assert (part.excluded, part.quantity) == (False, 1)
+    assert copy.outer is part.outer and copy.holes == part.holes
+    copy.holes.append(part.outer)
+    copy.rotations.append(90.0)
+    out.parts.append(copy)
+    assert len(part.holes) == 1 and part.rotations == [0.0, 180.0] and len(rec.parts) == 1

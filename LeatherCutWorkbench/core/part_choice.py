@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import gc
 from contextlib import contextmanager
+from copy import copy
 from dataclasses import dataclass, replace
 from typing import Dict, Iterable, List, Optional, Sequence
 
@@ -163,7 +164,11 @@ def apply_choices(rec: Recognition, choices: Dict[str, PartChoice]) -> Recogniti
 
 
 def _part_copy(p: Part) -> Part:
-    """``p`` with its own lists (the geometry in them is shared)."""
-    return replace(p, holes=list(p.holes), lead_ins=list(p.lead_ins), marks=list(p.marks),
-                   lines=list(p.lines),
-                   rotations=None if p.rotations is None else list(p.rotations))
+    """``p`` with its own lists (the geometry in them is shared); ``copy.copy``
+    rather than ``dataclasses.replace``, which re-runs ``__init__`` (5x slower)."""
+    q = copy(p)
+    q.holes, q.lead_ins, q.marks, q.lines = (list(p.holes), list(p.lead_ins), list(p.marks),
+                                             list(p.lines))
+    if p.rotations is not None:
+        q.rotations = list(p.rotations)
+    return q
