@@ -144,3 +144,29 @@ def test_what_is_not_plain_is_declined(entity):
     text = "0\nSECTION\n2\nENTITIES\n{}0\nENDSEC\n0\nEOF\n"
     assert read_plain(text.format(ok).encode()) is not None
     assert read_plain(text.format(ok + entity).encode("latin-1")) is None
+
+
+_LINE = "0\nLINE\n5\n{h}\n8\nCUT\n10\n{x}\n20\n0\n11\n{x2}\n21\n0\n"
+_R2000 = "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1015\n0\nENDSEC\n"
+
+
+@pytest.mark.parametrize("header, body", [
+    ("", _LINE.format(h="1F", x=0, x2=10) + _LINE.format(h="1F", x=20, x2=30)),  # same handle
+    ("", _LINE.format(h="0", x=0, x2=10)),                       # ezdxf refuses handle 0
+    ("", _LINE.format(h="XYZ", x=0, x2=10)),                     # ezdxf renumbers
+    ("", "0\nCIRCLE\n5\nab\n8\nC\n10\n0\n20\n0\n40\n-1\n"),       # skipped, named by handle
+    ("", "0\nLINE\n5\n1F\n8\nCUT\n10\n1_0\n20\n0\n11\n  1.5  \n21\n1\n"),
+    ("", "0\nARC\n5\n1F\n8\nCUT\n10\n0\n20\n0\n40\n5\n50\n-30\n51\n400\n"),
+    ("", "0\nLWPOLYLINE\n5\n20\n8\nCUT\n90\n2\n10\n0\n20\n0\n10\n5\n20\n5\n"),   # R12
+    (_R2000, "0\nLWPOLYLINE\n5\n20\n8\nCUT\n90\n2\n10\n0\n20\n0\n10\n5\n20\n5\n"),  # no marker
+    (_R2000, "0\nLWPOLYLINE\n5\n20\n100\nAcDbEntity\n8\nCUT\n100\nAcDbPolyline\n90\n2\n70\n1\n"
+             "10\n0\n20\n0\n42\n1\n10\n5\n20\n0\n"),
+    (_R2000, "0\nLINE\n5\n1F\n100\nAcDbEntity\n100\nAcDbLine\n8\nCUT\n10\n0\n20\n0\n11\n1\n21\n1\n"),
+    (_R2000, "0\nLINE\n5\n1F\n100\nAcDbEntity\n8\nCUT\n100\nAcDbCircle\n10\n0\n20\n0\n11\n1\n21\n1\n"),
+    (_R2000, "0\nARC\n5\n1F\n100\nAcDbEntity\n8\nA\n100\nAcDbCircle\n10\n0\n20\n0\n40\n5\n"
+             "100\nAcDbArc\n50\n0\n51\n90\n"),
+])
+def test_odd_but_readable_entities_give_the_same_result(tmp_path, header, body):
+    path = tmp_path / "odd.dxf"
+    path.write_text(header + "0\nSECTION\n2\nENTITIES\n" + body + "0\nENDSEC\n0\nEOF\n")
+    _same(str(path))

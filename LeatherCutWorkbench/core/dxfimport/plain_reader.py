@@ -62,6 +62,20 @@ _REQUIRED: Dict[str, Tuple[str, ...]] = {
     "LINE": ("start", "end"), "ARC": ("center", "radius", "start_angle", "end_angle"),
     "CIRCLE": ("center", "radius"), "POINT": ("location",), "LWPOLYLINE": (),
 }
+#: Subclass markers (group 100) ezdxf expects, in order, and the group codes
+#: each subclass may hold; ezdxf reads an attribute only inside its subclass.
+_SUBCLASSES: Dict[str, Tuple[Tuple[str, frozenset], ...]] = {
+    "LINE": (("AcDbLine", frozenset((39, 10, 20, 30, 11, 21, 31, 210, 220, 230))),),
+    "CIRCLE": (("AcDbCircle", frozenset((39, 10, 20, 30, 40, 210, 220, 230))),),
+    "ARC": (("AcDbCircle", frozenset((39, 10, 20, 30, 40, 210, 220, 230))),
+            ("AcDbArc", frozenset((50, 51)))),
+    "POINT": (("AcDbPoint", frozenset((10, 20, 30, 39, 50, 210, 220, 230))),),
+    "LWPOLYLINE": (("AcDbPolyline", frozenset((90, 70, 43, 38, 39, 10, 20, 40, 41, 42,
+                                                210, 220, 230))),),
+}
+#: Codes before the first marker, and in the AcDbEntity subclass.
+_HEAD_CODES = frozenset((5, 330))
+_ENTITY_CODES = frozenset((8, 62, 6, 370, 48, 420, 440, 67))
 _Z_AXIS = (0.0, 0.0, 1.0)
 #: Bytes of lines split per step: bounds the memory of the split lines of a big file.
 _CHUNK_BYTES = 1 << 18
@@ -246,6 +260,9 @@ class _Parser:
                 raise _NotPlain("section not closed")
         if "$ACADVER" in self.header and self.header["$ACADVER"] not in _VERSIONS:
             raise _NotPlain("DXF version ezdxf would upgrade")
+        if self.header.get("$ACADVER", "AC1009") == "AC1009" and any(
+                e._type == "LWPOLYLINE" for e in self.entities):
+            raise _NotPlain("LWPOLYLINE in an R12 drawing")
         folded = [n.lower() for n in self.layers]
         if len(set(folded)) != len(folded):
             raise _NotPlain("layer defined twice")
@@ -388,11 +405,35 @@ def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
         elif code not in _IGNORED:
             raise _NotPlain(f"group code {code} in {dxftype}")
         i += 1
+    steps.extend(_markers(dxftype, codes))
     if "handle" not in names:
         raise _NotPlain("no handle")
     for name in _REQUIRED[dxftype]:
         if name not in names:
             raise _NotPlain(f"{dxftype} without {name}")
+    return steps
+
+
+def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
+    """Steps checking the subclass markers: none at all (R12 style, which ezdxf
+    reads as one group; not for LWPOLYLINE, which ezdxf refuses without its
+    marker), or exactly AcDbEntity then the type's subclasses, each group code
+    in its own subclass.  Other layouts are not plain (ezdxf would drop or move
+    attributes)."""
+    at = [i for i, c in enumerate(codes) if c == 100]
+    if not at:
+        if dxftype == "LWPOLYLINE":
+            raise _NotPlain("LWPOLYLINE without its subclass marker")
+        return []
+    expected = (("AcDbEntity", _ENTITY_CODES),) + _SUBCLASSES[dxftype]
+    if len(at) != len(expected) or not set(codes[:at[0]]) <= _HEAD_CODES:
+        raise _NotPlain("subclass markers not as ezdxf writes them")
+    steps = []
+    for k, (i, (name, allowed)) in enumerate(zip(at, expected)):
+        end = at[k + 1] if k + 1 < len(at) else len(codes)
+        if not set(codes[i + 1:end]) <= allowed:
+            raise _NotPlain(f"group code outside its subclass {name}")
+        steps.append(("m", name, i))
     return steps
 
 
@@ -412,6 +453,8 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
             value = values[step[2]]
             if not value or value != value.strip():
                 raise _NotPlain("empty handle or layer, or spaces around it")
+            if step[1] == "handle" and not int(value, 16):    # ezdxf refuses handle 0
+                raise _NotPlain("handle 0")
             attrs[step[1]] = value if step[1] == "handle" else names.setdefault(value, value)
         elif op == "f":
             attrs[step[1]] = float(values[step[2]])
@@ -421,6 +464,9 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
             rows[-1][step[3]] = float(values[step[2]])
         elif op == "i":
             attrs[step[1]] = int(values[step[2]])
+        elif op == "m":
+            if values[step[2]] != step[1]:
+                raise _NotPlain("unexpected subclass marker")
         elif int(values[step[2]]) != 0:      # "z": group 67, paper space
             raise _NotPlain("paper space entity")
     if attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
