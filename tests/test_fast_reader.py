@@ -170,3 +170,20 @@ def test_odd_but_readable_entities_give_the_same_result(tmp_path, header, body):
     path = tmp_path / "odd.dxf"
     path.write_text(header + "0\nSECTION\n2\nENTITIES\n" + body + "0\nENDSEC\n0\nEOF\n")
     _same(str(path))
+
+
+def test_an_entity_owned_by_paper_space_without_its_67_flag_gives_the_same_result(tmp_path):
+    doc = ezdxf.new("R2000")
+    doc.modelspace().add_line((0, 0), (10, 0))
+    doc.paperspace().add_line((0, 0), (5, 5))
+    src = tmp_path / "paper.dxf"
+    doc.saveas(src)
+    lines = src.read_text().split("\n")
+    out = []
+    for k in range(0, len(lines) - 1, 2):       # drop the 67 (paper space) flags
+        if lines[k].strip() != "67":
+            out += lines[k:k + 2]
+    path = tmp_path / "owner.dxf"
+    path.write_text("\n".join(out) + "\n")
+    assert _same(str(path)) == "ezdxf"
+    assert _same(str(src)) == "ezdxf"

@@ -38,9 +38,9 @@ PLAIN_TYPES = frozenset(("LINE", "LWPOLYLINE", "ARC", "CIRCLE", "POINT"))
 _VERSIONS = frozenset(("AC1009", "AC1015", "AC1018", "AC1021", "AC1024", "AC1027", "AC1032"))
 
 #: Group codes any plain entity may carry whose value the importer never
-#: reads (subclass markers, owner, linetype and its scale, lineweight,
-#: thickness, true colour, transparency).
-_IGNORED = frozenset((100, 330, 6, 48, 370, 39, 420, 440))
+#: reads (linetype and its scale, lineweight, thickness, true colour,
+#: transparency); subclass markers (100) are checked by :func:`_markers`.
+_IGNORED = frozenset((100, 6, 48, 370, 39, 420, 440))
 #: Float attributes by entity type: group code -> ezdxf attribute name.
 _FLOATS: Dict[str, Dict[int, str]] = {
     "LINE": {},
@@ -246,6 +246,8 @@ class _Parser:
         self.header: Dict[str, Any] = {}
         self.layers: List[str] = []
         self.entities: List[PlainEntity] = []
+        #: handle of the *Model_Space block record: the owner (330) of every entity
+        self.owner: Optional[str] = None
 
     def parse(self, pairs: _Stream) -> PlainDocument:
         for code, value in pairs:
@@ -304,7 +306,7 @@ class _Parser:
         raise _NotPlain("header not closed")
 
     def _tables(self, pairs: _Stream) -> Tuple[int, str]:
-        table, record = "", ""
+        table, record, handle = "", "", ""
         for code, value in pairs:
             if code == 0:
                 if value == "ENDSEC":
@@ -313,11 +315,18 @@ class _Parser:
                     code, table = next(pairs)
                     if code != 2:
                         raise _NotPlain("table without name")
-                record = value
+                record, handle = value, ""
+            elif code == 5:
+                handle = value
             elif code == 2 and table == "LAYER" and record == "LAYER":
                 if value != value.strip() or not value:
                     raise _NotPlain("layer name with spaces around it")
                 self.layers.append(value)
+            elif (code == 2 and table == "BLOCK_RECORD" and record == "BLOCK_RECORD"
+                  and value.lower() == "*model_space"):
+                if self.owner is not None or not handle:
+                    raise _NotPlain("model space record twice or without handle")
+                self.owner = handle
         raise _NotPlain("tables not closed")
 
     def _blocks(self, pairs: _Stream) -> Tuple[int, str]:
@@ -345,7 +354,7 @@ class _Parser:
             plan = plans.get(key)
             if plan is None:
                 plan = plans[key] = _plan(dxftype, codes)
-            append(_make(dxftype, plan, values, names))
+            append(_make(dxftype, plan, values, names, self.owner))
 
 
 def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
@@ -388,6 +397,8 @@ def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
             steps.append(("i", "color", i))
         elif code == 67:
             steps.append(("z", "", i))
+        elif code == 330:
+            steps.append(("o", "", i))
         elif lw and code == 10:
             if i + 1 >= n or codes[i + 1] != 20:
                 raise _NotPlain("vertex without y")
@@ -437,10 +448,12 @@ def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
     return steps
 
 
-def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str]
-          ) -> PlainEntity:
+def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str],
+          owner: Optional[str]) -> PlainEntity:
     """The entity from its tag ``values`` read as ``plan`` says; ``names`` keeps
-    one string object per layer name (a million entities share a few layers)."""
+    one string object per layer name (a million entities share a few layers);
+    an owner handle (330) must be ``owner``, the model space (ezdxf files an
+    entity under the layout its owner names)."""
     attrs: Dict[str, Any] = {}
     rows: List[List[float]] = []
     for step in plan:
@@ -464,6 +477,9 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
             rows[-1][step[3]] = float(values[step[2]])
         elif op == "i":
             attrs[step[1]] = int(values[step[2]])
+        elif op == "o":
+            if values[step[2]] != owner:
+                raise _NotPlain("owner is not the model space")
         elif op == "m":
             if values[step[2]] != step[1]:
                 raise _NotPlain("unexpected subclass marker")
