@@ -11,8 +11,10 @@ its own layout and still builds the entity objects).
 A drawing is *plain* when every value is ASCII, it has no BLOCKS content, no
 paper space entities and its model space holds only LINE, LWPOLYLINE, ARC,
 CIRCLE and POINT entities written with the group codes of the DXF reference,
-each with a handle, points given as complete 10/20 pairs and an extrusion of
-(0, 0, 1) when one is given.  For such a file :func:`read_plain` returns a
+each with a (hex, non-zero) handle, owned by the model space block record,
+its subclass markers either absent or as ezdxf reads them (LWPOLYLINE needs
+its own, and no LWPOLYLINE in an R12 file), points given as complete 10/20
+pairs and an extrusion of (0, 0, 1) when one is given.  For such a file :func:`read_plain` returns a
 :class:`PlainDocument` that answers the few questions the importer asks a
 document (``modelspace()``, ``header``, ``layers``, ``blocks``, ``layouts``,
 ``dxfversion``) with the values ezdxf would give; the entity converters in
