@@ -6,7 +6,9 @@ Generates (into a temporary directory, never committed) R12 drawings of
 (``lwpoly``: 100,000 squares), then runs the console script's ``main`` in a
 fresh subprocess per call so the peak memory (``ru_maxrss``) belongs to that
 call alone, and prints wall / CPU seconds and peak RSS, plus
-``ezdxf.readfile`` alone as the floor every import pays.
+``ezdxf.readfile`` alone (the floor of the ezdxf path; plain drawings like these
+are read by core/dxfimport/plain_reader.py instead) and ``stages``: the CPU
+seconds of each step of ``recognise --json`` run one after the other.
 
     .venv/bin/python bench/bench_hostile_or_scale.py [--lines-squares 250000]
                                                      [--lwpoly-squares 100000]
@@ -20,6 +22,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -29,9 +32,30 @@ import json, resource, sys, time
 sys.path.insert(0, {repo!r})
 what, path = sys.argv[1], sys.argv[2]
 t0, c0 = time.monotonic(), time.process_time()
+stages = {{}}
 if what == "readfile":
     import ezdxf
     ezdxf.readfile(path)
+    code = 0
+elif what == "stages":
+    # where recognise --json spends its time: the same calls as the CLI, one at a time
+    import io
+    from LeatherCutWorkbench.cli import _json_default
+    from LeatherCutWorkbench.cli.recognise_cmd import recognition_json
+    from LeatherCutWorkbench.core.dxfimport import read_drawing
+    from LeatherCutWorkbench.core.job import JobOptions, chosen_parts
+    from LeatherCutWorkbench.core.recognition import RecogniseOptions, recognise
+    def lap(name, c=[c0]):
+        now = time.process_time()
+        stages[name] = round(now - c[0], 2)
+        c[0] = now
+    lap("start-up and imports")
+    d = read_drawing(path); lap("import (read_drawing)")
+    r = recognise(d, RecogniseOptions()); lap("recognition (recognise)")
+    c = chosen_parts(d, r, JobOptions()); lap("part choices (chosen_parts)")
+    data = recognition_json(c, path); lap("report dict (recognition_json)")
+    json.dump(data, io.StringIO(), indent=2, default=_json_default); lap("JSON text (json.dump)")
+    stages["reader"] = d.stats["file"].get("reader")
     code = 0
 else:
     import io, contextlib
@@ -39,7 +63,9 @@ else:
     with contextlib.redirect_stdout(io.StringIO()):
         code = main([what, path, "--json"])
 print(json.dumps({{"code": code, "wall": time.monotonic() - t0, "cpu": time.process_time() - c0,
-                  "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}}))
+                  "cpu_process": sum(resource.getrusage(resource.RUSAGE_SELF)[:2]),
+                  "rss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+                  "stages": stages}}))
 """
 
 
@@ -68,11 +94,16 @@ def write_squares(path: str, n: int, lwpoly: bool, pitch: float = 10.0, size: fl
 
 
 def run(what: str, path: str) -> dict:
+    """One call in a fresh interpreter; ``wall_process`` / ``cpu_process`` include
+    the interpreter's start-up (``wall`` / ``cpu``: from the child's first line)."""
+    t0 = time.monotonic()
     proc = subprocess.run([sys.executable, "-c", CHILD.format(repo=REPO), what, path],
                           capture_output=True, text=True)
     if proc.returncode != 0:
         return {"code": proc.returncode, "error": proc.stderr.strip()[-300:]}
-    return json.loads(proc.stdout.strip().splitlines()[-1])
+    out = json.loads(proc.stdout.strip().splitlines()[-1])
+    out["wall_process"] = time.monotonic() - t0
+    return out
 
 
 def main() -> int:
@@ -91,7 +122,7 @@ def main() -> int:
             path = os.path.join(tmp, "drawing.dxf")
             write_squares(path, n, lw)
             mb = os.path.getsize(path) / 2 ** 20
-            for what in ("readfile", "inspect", "recognise"):
+            for what in ("readfile", "inspect", "recognise", "stages"):
                 r = run(what, path)
                 rows.append((label, f"{mb:.0f}", what, r))
                 print(label, what, json.dumps(r), flush=True)
@@ -99,8 +130,13 @@ def main() -> int:
     print("| drawing | file MiB | call | exit | wall s | CPU s | peak RSS MiB |")
     print("|---|---|---|---|---|---|---|")
     for label, mb, what, r in rows:
-        print(f"| {label} | {mb} | {what} | {r.get('code')} | {r.get('wall', 0):.1f} | "
-              f"{r.get('cpu', 0):.1f} | {r.get('rss_mb', 0):.0f} |")
+        print(f"| {label} | {mb} | {what} | {r.get('code')} | {r.get('wall_process', 0):.1f} | "
+              f"{r.get('cpu_process', 0):.1f} | {r.get('rss_mb', 0):.0f} |")
+    print("(wall and CPU of the whole process, interpreter start-up included)")
+    print("\nCPU s per stage of recognise --json (the 'stages' call):")
+    for label, mb, what, r in rows:
+        if what == "stages":
+            print(label, json.dumps(r.get("stages")))
     return 0
 
 

@@ -304,6 +304,7 @@ def _merge_overlaps(lines: List[LineEdge], xy: np.ndarray, tol: float, counts: C
     starts = np.flatnonzero(brk)
     ends = np.r_[starts[1:], n]
     multi = np.flatnonzero(ends - starts > 1)
+    multi = multi[_may_overlap(xy, order, starts[multi], ends[multi], tol)]
     replace: Dict[int, List[LineEdge]] = {}
     for k in multi:
         idx = order[starts[k]:ends[k]]
@@ -314,6 +315,38 @@ def _merge_overlaps(lines: List[LineEdge], xy: np.ndarray, tol: float, counts: C
     for i, e in enumerate(lines):
         out.extend(replace.get(i, (e,)))
     return out, _line_array(out)
+
+
+def _may_overlap(xy: np.ndarray, order: np.ndarray, starts: np.ndarray, ends: np.ndarray,
+                 tol: float) -> np.ndarray:
+    """Mask over the carrier runs ``order[starts[k]:ends[k]]``: False only where
+    :func:`_resolve_carrier` would surely find no overlap, so it is not called
+    (on a drawing of many separate parts nearly every run; 1.6 s of 7 s on 100k
+    lines).  The same projection onto the run's first line as there, all lines
+    of the run, sorted: the first overlap of sorted intervals is always between
+    neighbours, and dropping lines (those off the carrier) adds none.  A margin
+    of 1e-6 mm covers rounding differences to the exact code."""
+    sizes = ends - starts
+    if len(sizes) == 0:
+        return np.zeros(0, dtype=bool)
+    gid = np.repeat(np.arange(len(sizes)), sizes)
+    first = np.r_[0, np.cumsum(sizes)[:-1]]
+    members = order[np.repeat(starts, sizes) + np.arange(len(gid)) - np.repeat(first, sizes)]
+    ref = np.minimum.reduceat(members, first)
+    ox, oy = xy[ref, 0], xy[ref, 1]
+    ln = np.hypot(xy[ref, 2] - ox, xy[ref, 3] - oy)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ux, uy = (xy[ref, 2] - ox) / ln, (xy[ref, 3] - oy) / ln
+    px, py, ux, uy = ox[gid], oy[gid], ux[gid], uy[gid]
+    a = (xy[members, 0] - px) * ux + (xy[members, 1] - py) * uy
+    b = (xy[members, 2] - px) * ux + (xy[members, 3] - py) * uy
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    srt = np.lexsort((lo, gid))
+    lo, hi, gid = lo[srt], hi[srt], gid[srt]
+    hit = (gid[1:] == gid[:-1]) & ~(lo[1:] >= hi[:-1] - tol + 1e-6)   # NaN: checked
+    out = np.zeros(len(sizes), dtype=bool)
+    out[gid[1:][hit]] = True
+    return out
 
 
 def _resolve_carrier(lines: List[LineEdge], idx: List[int], length: np.ndarray, tol: float,

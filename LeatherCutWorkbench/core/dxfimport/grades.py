@@ -77,18 +77,16 @@ def assign_grades(parts: Sequence[Part], texts: Sequence[TextNote]) -> List[Find
     from grade texts and layers (see module doc); one info finding per part."""
     from shapely.geometry import Point, Polygon
 
+    graded = [(t, g) for t, g in ((t, grade_of_text(t.text)) for t in texts) if g is not None]
     polys = []
-    for p in parts:
+    for p in parts if graded else ():     # outlines only when a grade text needs them
         try:
             poly = Polygon(p.outer.points(0.5))
         except (ValueError, TypeError):
             poly = None
         polys.append(poly if poly is not None and poly.is_valid else None)
     found: dict = {}
-    for t in texts:
-        g = grade_of_text(t.text)
-        if g is None:
-            continue
+    for t, g in graded:
         pt = Point(t.position)
         inside = [i for i, poly in enumerate(polys) if poly is not None and poly.contains(pt)]
         if inside:

@@ -30,6 +30,7 @@ from ezdxf import recover
 from ..errors import InputError
 from ..model import Finding
 from .limits import check_regular_file, scan_nonfinite
+from .plain_reader import read_plain
 
 # ezdxf logs repairs as warnings; with no handler Python prints them on stderr,
 # which would break the CLI's one-line error rule.  They become findings here.
@@ -65,7 +66,8 @@ class OpenedFile:
 
     ``info`` keys: ``binary`` (bool), ``recovered`` (bool), ``recover_fixes`` (int),
     ``recover_errors`` (int), ``decimal_commas_fixed`` (int), ``trailing_bytes`` (int),
-    ``size_bytes`` (int), ``has_insunits`` (bool: the file itself sets ``$INSUNITS``;
+    ``size_bytes`` (int), ``reader`` ("plain": :mod:`.plain_reader`, else "ezdxf"),
+    ``has_insunits`` (bool: the file itself sets ``$INSUNITS``;
     ezdxf fills a default header for files without one)."""
 
     doc: Any
@@ -94,13 +96,16 @@ def open_dxf(path: str) -> OpenedFile:
     info["trailing_bytes"] = _trailing_bytes(path, data, findings)
     fixed = _decimal_comma_fix(path, data)
     if fixed is None:
-        return _parse(path, path, findings, info)
+        return _parse(path, path, findings, info, data)
     new_data, count = fixed
     info["decimal_commas_fixed"] = count
     findings.append(Finding(
         "warning", "decimal-commas",
         f"{count} numbers were written with a decimal comma (comma locale); "
         f"read as decimal points (e.g. '-6,5' as -6.5)", path))
+    plain = _plain(new_data, findings, info)
+    if plain is not None:
+        return plain
     fd, tmp = tempfile.mkstemp(suffix=".dxf", prefix="leathercut-")
     try:
         with os.fdopen(fd, "wb") as fh:
@@ -204,8 +209,23 @@ def _decimal_comma_fix(path: str, data: bytes) -> Optional["tuple[bytes, int]"]:
     return b"".join(parts), len(commas)
 
 
-def _parse(path: str, real_path: str, findings: List[Finding], info: Dict[str, Any]) -> OpenedFile:
-    """readfile, falling back to recover; ``real_path`` is what is parsed."""
+def _plain(data: bytes, findings: List[Finding], info: Dict[str, Any]) -> Optional[OpenedFile]:
+    """The drawing read by the fast reader (:mod:`.plain_reader`), None when it is not plain."""
+    doc = read_plain(data)
+    if doc is None:
+        return None
+    info["reader"] = "plain"
+    return OpenedFile(doc, findings, info)
+
+
+def _parse(path: str, real_path: str, findings: List[Finding], info: Dict[str, Any],
+           data: Optional[bytes] = None) -> OpenedFile:
+    """The fast reader for plain ASCII ``data``, else readfile falling back to
+    recover; ``real_path`` is what ezdxf parses."""
+    plain = _plain(data, findings, info) if data is not None else None
+    if plain is not None:
+        return plain
+    info["reader"] = "ezdxf"
     try:
         doc = ezdxf.readfile(real_path)
         return OpenedFile(doc, findings, info)

@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import math
 from collections import defaultdict
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
 
 from ..geometry import CurveSeg, LineSeg, Point, Segment
 from .segments import (SegmentIndex, line_cross, nearest_on, split_at_point, with_end,
@@ -88,6 +90,53 @@ class NodeGrid:
             own.append(n)
         return n
 
+    def nodes(self, pts: Sequence[Point]) -> List[int]:
+        """``[self.node(p) for p in pts]``, the same nodes in the same order, in
+        a fraction of the time: a numpy pass finds the points whose 3x3 cell
+        neighbourhood holds no other distinct point (most end points of a real
+        drawing), which become new nodes without any search."""
+        lonely = self._lonely(pts) if not self.pos else None
+        if lonely is None:
+            return [self.node(p) for p in pts]
+        points, cell_x, cell_y = lonely
+        exact, pos, cells, node = self.exact, self.pos, self.cells, self._node
+        out = []
+        for k, p in enumerate(pts):
+            n = exact.get(p)
+            if n is None:
+                if points[k]:
+                    n = len(pos)
+                    pos.append((p[0], p[1]))
+                    cells[(cell_x[k], cell_y[k])] = [n]
+                else:
+                    n = node(p)
+                exact[p] = n
+            out.append(n)
+        return out
+
+    def _lonely(self, pts: Sequence[Point]):
+        """(per point: alone in its 3x3 cells?, cell x, cell y as ints), or None
+        when the cells do not fit one int64 key (the caller searches then)."""
+        if not pts:
+            return None
+        xy = np.asarray(pts, dtype=float).reshape(-1, 2) + 0.0     # -0.0 is 0.0, as in the dict
+        cx = np.floor(xy[:, 0] * self.inv).astype(np.int64)
+        cy = np.floor(xy[:, 1] * self.inv).astype(np.int64)
+        span_y = int(cy.max() - cy.min()) + 3
+        if (int(cx.max() - cx.min()) + 3) * span_y >= 2 ** 62:
+            return None
+        _, first, inverse = np.unique(xy, axis=0, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        key = (cx[first] - cx.min() + 1) * span_y + (cy[first] - cy.min() + 1)
+        ukeys, counts = np.unique(key, return_counts=True)
+        total = np.zeros(len(key), dtype=np.int64)
+        for dx in (-1, 0, 1):
+            for dy in (-1, 0, 1):
+                probe = key + dx * span_y + dy
+                at = np.minimum(np.searchsorted(ukeys, probe), len(ukeys) - 1)
+                total += np.where(ukeys[at] == probe, counts[at], 0)
+        return (total == 1)[inverse].tolist(), cx.tolist(), cy.tolist()
+
     def find(self, p: Point) -> int:
         """The node within the tolerance of ``p``, or -1 (creates nothing)."""
         x, y = p
@@ -111,8 +160,13 @@ class Graph:
         self.pieces: List[Piece] = []
         self.adj: Dict[int, List[int]] = defaultdict(list)
         self.live_degree: Dict[int, int] = {}
-        for pc in pieces:
-            self.add(pc)
+        ends = self.grid.nodes([p for pc in pieces for p in (pc.seg.start, pc.seg.end)])
+        adj = self.adj
+        for i, pc in enumerate(pieces):            # as add() piece by piece
+            pc.n0, pc.n1 = ends[2 * i], ends[2 * i + 1]
+            self.pieces.append(pc)
+            adj[pc.n0].append(i)
+            adj[pc.n1].append(i)
 
     @property
     def pos(self) -> List[Point]:

@@ -18,11 +18,11 @@ file -- pieces are never merged):
 
 from __future__ import annotations
 
-import gc
 from collections import defaultdict
 from typing import Dict, List, Optional, Set
 
 from ..dxfimport.grades import assign_grades, grade_of_texts
+from ..gc_pause import collector_paused
 from ..model import (Contour, Drawing, Finding, Flag, LeadIn, Mark, OpenChain, Part,
                      Recognition)
 from ..progress import ProgressFn, report
@@ -63,13 +63,8 @@ def recognise(drawing: Drawing, options: RecogniseOptions = RecogniseOptions(),
     # The build allocates hundreds of thousands of small objects that live until
     # the end; the cyclic collector re-scanning them again and again doubled the
     # run time of a 10,000-part drawing (measured).  It runs again afterwards.
-    gc_was_on = gc.isenabled()
-    gc.disable()
-    try:
+    with collector_paused():
         return _recognise(drawing, options, progress)
-    finally:
-        if gc_was_on:
-            gc.enable()
 
 
 def _recognise(drawing: Drawing, options: RecogniseOptions,

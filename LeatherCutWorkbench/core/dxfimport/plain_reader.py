@@ -1,0 +1,499 @@
+"""A fast reader for *plain* ASCII DXF drawings; everything else goes to ezdxf.
+
+Why hand-written: ``ezdxf.readfile`` builds its whole object model (tags,
+ExtendedTags, one DXFEntity with a DXFNamespace per entity, the entity
+database) -- measured 38.6 CPU s and 861 MiB for 1 M LINEs, more than the
+rest of the import and recognition together -- while the importer reads a
+handful of attributes of each entity.  ezdxf has no cheaper public path that
+still hands us entities (``ezdxf.addons.iterdxf`` needs a file written with
+its own layout and still builds the entity objects).
+
+A drawing is *plain* when every value is ASCII, it has no BLOCKS content, no
+paper space entities and its model space holds only LINE, LWPOLYLINE, ARC,
+CIRCLE and POINT entities written with the group codes of the DXF reference,
+each with a (hex, non-zero) handle, owned by the model space block record,
+its subclass markers either absent or as ezdxf reads them (LWPOLYLINE needs
+its own, and no LWPOLYLINE in an R12 file), points given as complete 10/20
+pairs and an extrusion of (0, 0, 1) when one is given.  For such a file :func:`read_plain` returns a
+:class:`PlainDocument` that answers the few questions the importer asks a
+document (``modelspace()``, ``header``, ``layers``, ``blocks``, ``layouts``,
+``dxfversion``) with the values ezdxf would give; the entity converters in
+:mod:`.entities` run unchanged on its entities.  For anything else (an
+unknown group code, a missing or repeated one, a value that is not a number
+where one is due, a DXF version ezdxf would upgrade, ...) it returns None
+and the caller uses ezdxf, so every refusal and repair of the ezdxf path
+stays exactly as it is.  tests/test_fast_reader.py checks that both paths
+give the same drawing on every fixture the fast path accepts.
+
+All checks on the raw bytes (non-finite numbers, decimal commas, data after
+EOF) happen before, in :mod:`.reader`, for both paths.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, Iterator, List, Optional, Tuple
+
+#: Entity types the fast path reads.
+PLAIN_TYPES = frozenset(("LINE", "LWPOLYLINE", "ARC", "CIRCLE", "POINT"))
+
+#: DXF versions ezdxf loads as they are (R13 / R14 are upgraded: not plain).
+_VERSIONS = frozenset(("AC1009", "AC1015", "AC1018", "AC1021", "AC1024", "AC1027", "AC1032"))
+
+#: Group codes any plain entity may carry whose value the importer never
+#: reads (linetype and its scale, lineweight, thickness, true colour,
+#: transparency); subclass markers (100) are checked by :func:`_markers`.
+_IGNORED = frozenset((100, 6, 48, 370, 39, 420, 440))
+#: Float attributes by entity type: group code -> ezdxf attribute name.
+_FLOATS: Dict[str, Dict[int, str]] = {
+    "LINE": {},
+    "ARC": {40: "radius", 50: "start_angle", 51: "end_angle"},
+    "CIRCLE": {40: "radius"},
+    "POINT": {50: "angle"},
+    "LWPOLYLINE": {43: "const_width", 38: "elevation"},
+}
+#: Point attributes by entity type: x group code -> ezdxf attribute name.
+_POINTS: Dict[str, Dict[int, str]] = {
+    "LINE": {10: "start", 11: "end"},
+    "ARC": {10: "center"},
+    "CIRCLE": {10: "center"},
+    "POINT": {10: "location"},
+    "LWPOLYLINE": {},
+}
+#: Attributes without which the entity is not plain (ezdxf would fill a default).
+_REQUIRED: Dict[str, Tuple[str, ...]] = {
+    "LINE": ("start", "end"), "ARC": ("center", "radius", "start_angle", "end_angle"),
+    "CIRCLE": ("center", "radius"), "POINT": ("location",), "LWPOLYLINE": (),
+}
+#: Subclass markers (group 100) ezdxf expects, in order, and the group codes
+#: each subclass may hold; ezdxf reads an attribute only inside its subclass.
+_SUBCLASSES: Dict[str, Tuple[Tuple[str, frozenset], ...]] = {
+    "LINE": (("AcDbLine", frozenset((39, 10, 20, 30, 11, 21, 31, 210, 220, 230))),),
+    "CIRCLE": (("AcDbCircle", frozenset((39, 10, 20, 30, 40, 210, 220, 230))),),
+    "ARC": (("AcDbCircle", frozenset((39, 10, 20, 30, 40, 210, 220, 230))),
+            ("AcDbArc", frozenset((50, 51)))),
+    "POINT": (("AcDbPoint", frozenset((10, 20, 30, 39, 50, 210, 220, 230))),),
+    "LWPOLYLINE": (("AcDbPolyline", frozenset((90, 70, 43, 38, 39, 10, 20, 40, 41, 42,
+                                                210, 220, 230))),),
+}
+#: Codes before the first marker, and in the AcDbEntity subclass.
+_HEAD_CODES = frozenset((5, 330))
+_ENTITY_CODES = frozenset((8, 62, 6, 370, 48, 420, 440, 67))
+_Z_AXIS = (0.0, 0.0, 1.0)
+#: Bytes of lines split per step: bounds the memory of the split lines of a big file.
+_CHUNK_BYTES = 1 << 18
+
+
+class _NotPlain(Exception):
+    """The drawing is not plain: the caller reads it with ezdxf."""
+
+
+class Attribs:
+    """An entity's attributes as ezdxf's ``entity.dxf`` offers them: read as
+    attributes, with ``get``, and ``vars()`` lists those present in the file."""
+
+    def get(self, key: str, default: Any = None) -> Any:
+        return self.__dict__.get(key, default)
+
+
+class PlainEntity:
+    """One plain entity: ``dxftype()``, ``dxf``; LWPOLYLINE also ``lwpoints``
+    (``values.tolist()`` rows x, y, start width, end width, bulge) and ``closed``."""
+
+    __slots__ = ("_type", "dxf", "lwpoints", "closed")
+
+    def __init__(self, dxftype: str, dxf: Attribs):
+        self._type = dxftype
+        self.dxf = dxf
+
+    def dxftype(self) -> str:
+        return self._type
+
+
+class _LwPoints:
+    """``lwpoints.values.tolist()`` as ezdxf >= 1.1 offers it."""
+
+    __slots__ = ("_rows",)
+
+    def __init__(self, rows: List[List[float]]):
+        self._rows = rows
+
+    @property
+    def values(self) -> "_LwPoints":
+        return self
+
+    def tolist(self) -> List[List[float]]:
+        return self._rows
+
+
+class _Header:
+    def __init__(self, values: Dict[str, Any]):
+        self._values = values
+
+    def get(self, key: str, default: Any = None) -> Any:
+        return self._values.get(key, default)
+
+
+class _Layer:
+    __slots__ = ("dxf",)
+
+    def __init__(self, name: str):
+        self.dxf = Attribs()
+        self.dxf.name = name
+
+
+class _NoBlocks:
+    def get(self, name: str, default: Any = None) -> Any:
+        return default
+
+
+class PlainDocument:
+    """What the importer asks of a DXF document, for a plain drawing."""
+
+    def __init__(self, entities: List[PlainEntity], header: Dict[str, Any], layers: List[str]):
+        self._entities = entities
+        self.header = _Header(header)
+        self.dxfversion: str = header.get("$ACADVER", "AC1009")
+        self.layers = [_Layer(n) for n in layers]
+        self.blocks = _NoBlocks()
+        self.layouts: List[Any] = []   # no paper space entities (else not plain)
+
+    def modelspace(self) -> List[PlainEntity]:
+        return self._entities
+
+    def drop_entities(self) -> None:
+        """Forget the entities once converted (they are most of the memory)."""
+        self._entities = []
+
+
+def read_plain(data: bytes) -> Optional[PlainDocument]:
+    """The plain drawing in the ASCII DXF ``data``, or None when it is not plain."""
+    if not data.isascii():
+        return None
+    if b"\r" in data:
+        data = data.replace(b"\r\n", b"\n")
+        if b"\r" in data:
+            return None
+    try:
+        return _Parser().parse(_Stream(data))
+    except (_NotPlain, ValueError, IndexError, StopIteration):   # truncated or odd: ezdxf decides
+        return None
+
+
+def _chunks(data: bytes) -> Iterator[Tuple[List[int], List[str]]]:
+    """(group codes, values) of ``data``, a few MiB of lines at a time."""
+    pos, n = 0, len(data)
+    carry: Optional[str] = None
+    while pos < n:
+        end = data.find(b"\n", min(pos + _CHUNK_BYTES, n - 1))
+        if end < 0:
+            end = n
+        lines = data[pos:end].decode("ascii").split("\n")
+        pos = end + 1
+        if carry is not None:
+            lines.insert(0, carry)
+            carry = None
+        if len(lines) % 2:
+            carry = lines.pop()
+        yield list(map(int, lines[0::2])), lines[1::2]
+    if carry is not None and carry.strip():
+        raise _NotPlain("odd number of lines")
+
+
+class _Stream:
+    """The (group code, value) pairs of a file: one by one, or up to the next
+    group code 0 (an entity's tags) with a C-level search."""
+
+    def __init__(self, data: bytes):
+        self._chunks = _chunks(data)
+        self.codes: List[int] = []
+        self.values: List[str] = []
+        self.i = 0
+
+    def _more(self) -> bool:
+        for codes, values in self._chunks:
+            self.codes = self.codes[self.i:] + codes
+            self.values = self.values[self.i:] + values
+            self.i = 0
+            return True
+        return False
+
+    def __iter__(self) -> "_Stream":
+        return self
+
+    def __next__(self) -> Tuple[int, str]:
+        while self.i >= len(self.codes):
+            if not self._more():
+                raise StopIteration
+        i = self.i
+        self.i = i + 1
+        return self.codes[i], self.values[i]
+
+    def until_zero(self) -> Tuple[List[int], List[str]]:
+        """Codes and values up to (not including) the next group code 0."""
+        while True:
+            try:
+                j = self.codes.index(0, self.i)
+            except ValueError:
+                if not self._more():
+                    raise _NotPlain("not closed") from None
+                continue
+            i, self.i = self.i, j
+            return self.codes[i:j], self.values[i:j]
+
+
+class _Parser:
+    """Section by section; raises _NotPlain on anything not plain."""
+
+    def __init__(self) -> None:
+        self.header: Dict[str, Any] = {}
+        self.layers: List[str] = []
+        self.entities: List[PlainEntity] = []
+        #: handle of the *Model_Space block record: the owner (330) of every entity
+        self.owner: Optional[str] = None
+
+    def parse(self, pairs: _Stream) -> PlainDocument:
+        for code, value in pairs:
+            if (code, value) == (0, "EOF"):
+                break
+            if (code, value) != (0, "SECTION"):
+                raise _NotPlain("not a section")
+            code, name = next(pairs)
+            if code != 2:
+                raise _NotPlain("section without name")
+            if self._section(name, pairs) != (0, "ENDSEC"):
+                raise _NotPlain("section not closed")
+        if "$ACADVER" in self.header and self.header["$ACADVER"] not in _VERSIONS:
+            raise _NotPlain("DXF version ezdxf would upgrade")
+        if self.header.get("$ACADVER", "AC1009") == "AC1009" and any(
+                e._type == "LWPOLYLINE" for e in self.entities):
+            raise _NotPlain("LWPOLYLINE in an R12 drawing")
+        folded = [n.lower() for n in self.layers]
+        if len(set(folded)) != len(folded):
+            raise _NotPlain("layer defined twice")
+        # ezdxf creates the required layers a file lacks (document.py)
+        for required in ("0", "Defpoints"):
+            if required.lower() not in folded:
+                self.layers.append(required)
+        return PlainDocument(self.entities, self.header, self.layers)
+
+    def _section(self, name: str, pairs: _Stream) -> Tuple[int, str]:
+        if name == "HEADER":
+            return self._header(pairs)
+        if name == "TABLES":
+            return self._tables(pairs)
+        if name == "BLOCKS":
+            return self._blocks(pairs)
+        if name == "ENTITIES":
+            return self._entities(pairs)
+        if name in ("CLASSES", "OBJECTS", "THUMBNAILIMAGE", "ACDSDATA"):
+            for code, value in pairs:
+                if code == 0 and value == "ENDSEC":
+                    return code, value
+            raise _NotPlain("section not closed")
+        raise _NotPlain(f"unknown section {name}")
+
+    def _header(self, pairs: _Stream) -> Tuple[int, str]:
+        var = ""
+        for code, value in pairs:
+            if code == 0:
+                return code, value
+            if code == 9:
+                var = value
+                if var in self.header:
+                    raise _NotPlain("header variable repeated")
+            elif var == "$ACADVER" and code == 1:
+                self.header[var] = value
+            elif var == "$INSUNITS" and code == 70:
+                self.header[var] = int(value)
+        raise _NotPlain("header not closed")
+
+    def _tables(self, pairs: _Stream) -> Tuple[int, str]:
+        table, record, handle = "", "", ""
+        for code, value in pairs:
+            if code == 0:
+                if value == "ENDSEC":
+                    return code, value
+                if value == "TABLE":
+                    code, table = next(pairs)
+                    if code != 2:
+                        raise _NotPlain("table without name")
+                record, handle = value, ""
+            elif code == 5:
+                handle = value
+            elif code == 2 and table == "LAYER" and record == "LAYER":
+                if value != value.strip() or not value:
+                    raise _NotPlain("layer name with spaces around it")
+                self.layers.append(value)
+            elif (code == 2 and table == "BLOCK_RECORD" and record == "BLOCK_RECORD"
+                  and value.lower() == "*model_space"):
+                if self.owner is not None or not handle:
+                    raise _NotPlain("model space record twice or without handle")
+                self.owner = handle
+        raise _NotPlain("tables not closed")
+
+    def _blocks(self, pairs: _Stream) -> Tuple[int, str]:
+        for code, value in pairs:
+            if code == 0 and value not in ("BLOCK", "ENDBLK"):
+                if value == "ENDSEC":
+                    return code, value
+                raise _NotPlain("block content")
+        raise _NotPlain("blocks not closed")
+
+    def _entities(self, pairs: _Stream) -> Tuple[int, str]:
+        plans: Dict[Tuple, List[Tuple]] = {}
+        names: Dict[str, str] = {}
+        append = self.entities.append
+        while True:
+            code, dxftype = next(pairs)
+            if code != 0:
+                raise _NotPlain("entity without type")
+            if dxftype == "ENDSEC":
+                return code, dxftype
+            if dxftype not in PLAIN_TYPES:
+                raise _NotPlain(f"{dxftype} is not a plain entity")
+            codes, values = pairs.until_zero()
+            key = (dxftype, *codes)
+            plan = plans.get(key)
+            if plan is None:
+                plan = plans[key] = _plan(dxftype, codes)
+            append(_make(dxftype, plan, values, names, self.owner))
+
+
+def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
+    """How to read an entity of type ``dxftype`` whose tags have these group
+    codes: steps (op, attribute, value indexes).  Everything that depends on
+    the codes alone (unknown or repeated codes, incomplete points, required
+    attributes) is checked here, once per distinct code sequence."""
+    floats = _FLOATS[dxftype]
+    points = _POINTS[dxftype]
+    lw = dxftype == "LWPOLYLINE"
+    steps: List[Tuple] = []
+    names: set = set()
+
+    def once(name: str) -> None:
+        if name in names:
+            raise _NotPlain(f"{name} repeated")
+        names.add(name)
+
+    i, n = 0, len(codes)
+    while i < n:
+        code = codes[i]
+        if code in points or code == 210:
+            name = points.get(code, "extrusion")
+            once(name)
+            if i + 1 >= n or codes[i + 1] != code + 10:
+                raise _NotPlain("point without y")
+            iz = i + 2 if i + 2 < n and codes[i + 2] == code + 20 else -1
+            steps.append(("p", name, i, i + 1, iz))
+            i = i + 2 if iz < 0 else i + 3
+            continue
+        if code in floats:
+            once(floats[code])
+            steps.append(("f", floats[code], i))
+        elif code in (5, 8):
+            name = "handle" if code == 5 else "layer"
+            once(name)
+            steps.append(("s", name, i))
+        elif code == 62:
+            once("color")
+            steps.append(("i", "color", i))
+        elif code == 67:
+            steps.append(("z", "", i))
+        elif code == 330:
+            steps.append(("o", "", i))
+        elif lw and code == 10:
+            if i + 1 >= n or codes[i + 1] != 20:
+                raise _NotPlain("vertex without y")
+            steps.append(("v", "", i, i + 1))
+            i += 2
+            continue
+        elif lw and code in (40, 41, 42):
+            if not steps or steps[-1][0] not in ("v", "w"):
+                raise _NotPlain("vertex value before the first vertex")
+            steps.append(("w", "", i, code - 38))   # row columns 2, 3: widths, 4: bulge
+        elif lw and code in (70, 90):
+            name = "flags" if code == 70 else "count"
+            once(name)
+            steps.append(("i", name, i))
+        elif code not in _IGNORED:
+            raise _NotPlain(f"group code {code} in {dxftype}")
+        i += 1
+    steps.extend(_markers(dxftype, codes))
+    if "handle" not in names:
+        raise _NotPlain("no handle")
+    for name in _REQUIRED[dxftype]:
+        if name not in names:
+            raise _NotPlain(f"{dxftype} without {name}")
+    return steps
+
+
+def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
+    """Steps checking the subclass markers: none at all (R12 style, which ezdxf
+    reads as one group; not for LWPOLYLINE, which ezdxf refuses without its
+    marker), or exactly AcDbEntity then the type's subclasses, each group code
+    in its own subclass.  Other layouts are not plain (ezdxf would drop or move
+    attributes)."""
+    at = [i for i, c in enumerate(codes) if c == 100]
+    if not at:
+        if dxftype == "LWPOLYLINE":
+            raise _NotPlain("LWPOLYLINE without its subclass marker")
+        return []
+    expected = (("AcDbEntity", _ENTITY_CODES),) + _SUBCLASSES[dxftype]
+    if len(at) != len(expected) or not set(codes[:at[0]]) <= _HEAD_CODES:
+        raise _NotPlain("subclass markers not as ezdxf writes them")
+    steps = []
+    for k, (i, (name, allowed)) in enumerate(zip(at, expected)):
+        end = at[k + 1] if k + 1 < len(at) else len(codes)
+        if not set(codes[i + 1:end]) <= allowed:
+            raise _NotPlain(f"group code outside its subclass {name}")
+        steps.append(("m", name, i))
+    return steps
+
+
+def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str],
+          owner: Optional[str]) -> PlainEntity:
+    """The entity from its tag ``values`` read as ``plan`` says; ``names`` keeps
+    one string object per layer name (a million entities share a few layers);
+    an owner handle (330) must be ``owner``, the model space (ezdxf files an
+    entity under the layout its owner names)."""
+    attrs: Dict[str, Any] = {}
+    rows: List[List[float]] = []
+    for step in plan:
+        op = step[0]
+        if op == "p":
+            iz = step[4]
+            attrs[step[1]] = (float(values[step[2]]), float(values[step[3]]),
+                              float(values[iz]) if iz >= 0 else 0.0)
+        elif op == "s":
+            value = values[step[2]]
+            if not value or value != value.strip():
+                raise _NotPlain("empty handle or layer, or spaces around it")
+            if step[1] == "handle" and not int(value, 16):    # ezdxf refuses handle 0
+                raise _NotPlain("handle 0")
+            attrs[step[1]] = value if step[1] == "handle" else names.setdefault(value, value)
+        elif op == "f":
+            attrs[step[1]] = float(values[step[2]])
+        elif op == "v":
+            rows.append([float(values[step[2]]), float(values[step[3]]), 0.0, 0.0, 0.0])
+        elif op == "w":
+            rows[-1][step[3]] = float(values[step[2]])
+        elif op == "i":
+            attrs[step[1]] = int(values[step[2]])
+        elif op == "o":
+            if values[step[2]] != owner:
+                raise _NotPlain("owner is not the model space")
+        elif op == "m":
+            if values[step[2]] != step[1]:
+                raise _NotPlain("unexpected subclass marker")
+        elif int(values[step[2]]) != 0:      # "z": group 67, paper space
+            raise _NotPlain("paper space entity")
+    if attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
+        raise _NotPlain("an OCS entity")
+    e = PlainEntity(dxftype, Attribs())
+    if dxftype == "LWPOLYLINE":
+        if attrs.pop("count", len(rows)) != len(rows):
+            raise _NotPlain("vertex count differs from the vertices")
+        e.lwpoints = _LwPoints(rows)
+        e.closed = bool(attrs.get("flags", 0) & 1)
+    e.dxf.__dict__ = attrs
+    return e
