@@ -47,7 +47,7 @@ def run_own(path: str, budget: float, workers: int, graded: bool):
     hides = inst.hides
     if not graded:                 # zones forbidden to everyone, as for PackingSolver
         full = hides[0].base_grade
-        parts = [replace(p, grade=full) for p in parts]
+        parts = [replace(p, grade=full, grade_regions=[]) for p in parts]
     opts = NestOptions(container=ContainerSpec.hide(*hides), time_budget=budget, workers=workers,
                        rotations_override=ANGLES)
     t0 = time.monotonic()

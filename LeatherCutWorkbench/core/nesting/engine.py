@@ -27,6 +27,7 @@ from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
 from .options import NestOptions
+from .part_regions import nesting_grade, region_check
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part, to_grid
 
@@ -193,10 +194,15 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     half_gap = options.spacing / 2.0
     variants = make_variants(types, scale, half_gap, options.chord_tol)
     type_variants = [[v.index for v in variants if v.type_index == i] for i in range(len(types))]
-    grades = [t.grade for t in types]
+    by_key = {p.id: p for p in parts}
+    type_parts = [by_key[t.key] for t in types]
+    grades = [nesting_grade(p) for p in type_parts]
     bins, hides, open_new, max_bins = _bins(options, scale, half_gap, grades)
     problem = Problem(variants, type_variants, grades, [t.area for t in types], bins,
-                      open_new, max_bins, scale)
+                      open_new, max_bins, scale,
+                      hide_net=[net_area(h) for h in hides] if hides else None,
+                      region_check=region_check(type_parts, hides, scale, options.tolerance,
+                                                options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
     report(progress, 0.02, f"nesting {len(copies)} copies of {len(types)} parts")
 
@@ -263,7 +269,7 @@ def _summary(problem: Problem, options: NestOptions, scale: float, net: Sequence
     if spec.kind == "sheet":
         util = area / (used * spec.width * spec.height) if used else 0.0
         return f"{head} on {used} sheet(s), utilisation {100 * util:.1f} %"
-    total = sum(net[:used])
+    total = sum(net[b] for b in {b for (_si, b) in placed})   # b: hide index
     util = area / total if total else 0.0
     return f"{head} on {used} hide(s), utilisation {100 * util:.1f} %"
 
@@ -426,6 +432,26 @@ def material_grades(layout: Layout, placed: Sequence[Polygon], grade: Dict[str, 
     return out
 
 
+def _add_region_grades(parts: Sequence[Part], layout: Layout, rows: List[Dict[str, object]],
+                       options: NestOptions) -> None:
+    """Rows of ``material_grades`` for parts with graded regions get ``regions``:
+    per piece (``region k`` / ``rest``) the grade it needs and the grade it lies on."""
+    from .part_regions import pieces, region_grades
+    by_id = {p.id: p for p in parts if p.grade_regions}
+    if not by_id:
+        return
+    conts = {c.id: c for c in layout.containers}
+    split = {pid: pieces(p, options.chord_tol) for pid, p in by_id.items()}
+    cache: Dict[tuple, object] = {}
+    for pl, row in zip(layout.placements, rows):
+        if pl.part_id not in by_id:
+            continue
+        placed = [(g, placed_polygon(sh, pl.x, pl.y, pl.angle, pl.mirrored), lab)
+                  for g, sh, lab in split[pl.part_id]]
+        row["regions"] = region_grades(by_id[pl.part_id], placed, conts[pl.container],
+                                       options.tolerance, cache)
+
+
 def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) -> None:
     """(Re)compute the layout's figures from its placements: strip length and
     density (the strip outline is set to the used length), sheet and hide
@@ -446,6 +472,7 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
     metrics = layout.metrics
     if spec.kind == "hide":
         metrics["grades"] = material_grades(layout, placed, grade, options.tolerance)
+        _add_region_grades(parts, layout, metrics["grades"], options)
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
         c = layout.containers[0]
