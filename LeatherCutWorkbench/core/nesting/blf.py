@@ -109,6 +109,9 @@ class Placer:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
                     hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
                                      self._ob_forms[fk])
+                    rc = self.region_check
+                    if exact and hit and rc is not None and rc.applies(v.type_index):
+                        hit = self._region_fit(spec, hit, rc, v)
                     self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
@@ -119,6 +122,24 @@ class Placer:
         if lx > hx or ly > hy:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
+
+    @staticmethod
+    def _region_fit(spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
+        """``fit`` cut down to where each stricter region of ``v``'s part lies in
+        the hide region of its grade (exact, zone borders need no margin)."""
+        from .nfp import region_ifp
+        for g, ring in rc.grid_rings(v.type_index, v.angle, v.mirrored):
+            outers, obstacles = spec.regions[spec.grade_key.get(g, g)]
+            inner = region_ifp(outers, obstacles, ring)
+            if not inner:
+                return []
+            c = pyclipper.Pyclipper()
+            c.AddPaths(fit, pyclipper.PT_SUBJECT, True)
+            c.AddPaths(inner, pyclipper.PT_CLIP, True)
+            fit = c.Execute(pyclipper.CT_INTERSECTION, _NZ, _NZ)
+            if not fit:
+                return []
+        return fit
 
     def _may_fit(self, b: int, state: "BinState", t: int) -> bool:
         """False when a copy of type ``t`` is larger than the material left on

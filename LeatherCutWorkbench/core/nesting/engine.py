@@ -27,7 +27,7 @@ from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
 from .options import NestOptions
-from .part_regions import nesting_grade, region_check
+from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part, to_grid
 
@@ -197,7 +197,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     by_key = {p.id: p for p in parts}
     type_parts = [by_key[t.key] for t in types]
     grades = [nesting_grade(p) for p in type_parts]
-    bins, hides, open_new, max_bins = _bins(options, scale, half_gap, grades)
+    bins, hides, open_new, max_bins = _bins(options, scale, half_gap,
+                                            grades + region_grade_levels(type_parts))
     problem = Problem(variants, type_variants, grades, [t.area for t in types], bins,
                       open_new, max_bins, scale,
                       hide_net=[net_area(h) for h in hides] if hides else None,

@@ -22,6 +22,7 @@ would cover material below its grade.  The independent checker
 
 from __future__ import annotations
 
+import math
 from typing import Dict, List, Optional, Sequence, Tuple
 
 from shapely import affinity
@@ -96,19 +97,43 @@ class RegionCheck:
     worker process (prepared geometries do not pickle)."""
 
     def __init__(self, types: Sequence[Optional[List[Tuple[int, BaseGeometry]]]],
-                 hides: Sequence[Container], scale: float, tol: float):
+                 hides: Sequence[Container], scale: float, tol: float,
+                 rings: Optional[Sequence[List[Tuple[int, List[Tuple[float, float]]]]]] = None):
         self.types = list(types)
         self.hides = list(hides)
         self.scale = scale
         self.tol = tol
+        #: per type: (grade, outer ring in part coordinates) of its stricter regions
+        self.rings = list(rings) if rings is not None else [[] for _ in self.types]
         self._bad: Dict[Tuple[int, int], object] = {}
         self._shapes: Dict[Tuple[int, float, bool], List[Tuple[int, BaseGeometry]]] = {}
 
     def __getstate__(self):
-        return {"types": self.types, "hides": self.hides, "scale": self.scale, "tol": self.tol}
+        return {"types": self.types, "hides": self.hides, "scale": self.scale, "tol": self.tol,
+                "rings": self.rings}
 
     def __setstate__(self, state):
-        self.__init__(state["types"], state["hides"], state["scale"], state["tol"])
+        self.__init__(state["types"], state["hides"], state["scale"], state["tol"],
+                      state["rings"])
+
+    def grid_rings(self, t: int, angle: float, mirrored: bool) -> List[Tuple[int, list]]:
+        """(grade, CCW grid ring) of type ``t``'s stricter regions in the frame of
+        its variant (mirror about the Y axis, rotate about the origin, scale):
+        the engine intersects the variant's inner-fit region with theirs."""
+        import pyclipper
+        out = []
+        a = math.radians(angle)
+        ca, sa = math.cos(a), math.sin(a)
+        for g, ring in self.rings[t]:
+            pts = []
+            for x, y in ring:
+                x = -x if mirrored else x
+                pts.append([int(round((x * ca - y * sa) * self.scale)),
+                            int(round((x * sa + y * ca) * self.scale))])
+            if not pyclipper.Orientation(pts):
+                pts.reverse()
+            out.append((g, pts))
+        return out
 
     def applies(self, t: int) -> bool:
         return t < len(self.types) and self.types[t] is not None
@@ -146,11 +171,16 @@ def region_check(parts: Sequence[Part], hides: Sequence[Container], scale: float
     if not hides or not any(p.grade_regions for p in parts):
         return None
     types: List[Optional[List[Tuple[int, BaseGeometry]]]] = []
+    rings: List[List[Tuple[int, List[Tuple[float, float]]]]] = []
     for p in parts:
-        if not p.grade_regions:
-            types.append(None)
-            continue
         base = nesting_grade(p)
         strict = [(g, shape) for g, shape, _l in pieces(p, chord_tol) if g > base]
         types.append(strict or None)
-    return RegionCheck(types, hides, scale, tol)
+        rings.append([(g, [(float(x), float(y)) for x, y in c.points(chord_tol)])
+                      for g, c in p.grade_regions if g > base])
+    return RegionCheck(types, hides, scale, tol, rings)
+
+
+def region_grade_levels(parts: Sequence[Part]) -> List[int]:
+    """The grades of every part region (the engine builds a hide region for each)."""
+    return sorted({g for p in parts for g, _c in p.grade_regions})
