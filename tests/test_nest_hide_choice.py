@@ -58,3 +58,30 @@ def test_fewest_hides_before_utilisation():
     assert check_layout(parts, lay, rotations_override=ANGLES) == []
     assert lay.metrics["unplaced_count"] == 0
     assert [c.id for c in lay.containers] == ["big"]
+
+
+def test_simplified_hide_outlines_contain_the_parts_and_have_fewer_vertices():
+    """A finely flattened seat-like part (a 200-vertex crescent): the ring hide
+    nesting uses contains the true one, has far fewer vertices and is less
+    than 1.5 % larger (a thin crescent: much outline per area)."""
+    import math
+
+    from shapely.geometry import Polygon
+
+    from LeatherCutWorkbench.core.nesting.hide_shapes import simplify_for_hides
+    from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
+    from LeatherCutWorkbench.core.model import Part
+    from nest_shapes import poly_contour
+
+    outer = [(600 * math.cos(a), 300 * math.sin(a)) for a in
+             (math.pi * k / 100 for k in range(101))]
+    inner = [(400 * math.cos(a), 120 * math.sin(a)) for a in
+             (math.pi * (100 - k) / 100 for k in range(1, 100))]
+    part = Part(id="crescent", outer=poly_contour("o", outer + inner))
+    t = piece_from_part(part, 0.05, 30.0, [0.0, 90.0], False)
+    variants = make_variants([t], 1000.0, 0.0, 0.05)
+    for v, s in zip(variants, simplify_for_hides(variants)):
+        true, simple = Polygon(v.outer), Polygon(s.outer)
+        assert simple.covers(true) and Polygon(s.core).covers(Polygon(v.core))
+        assert len(s.outer) < len(v.outer) / 3
+        assert simple.area < 1.015 * true.area

@@ -107,8 +107,10 @@ class Placer:
                     fk = (key[0], exact or rk not in spec.coarse)
                     if fk not in self._ob_forms:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
+                    # exact: the true ring against the defects, its convex hull against
+                    # the hide's outline (a few times faster; a hide is nearly convex)
                     hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
-                                     self._ob_forms[fk])
+                                     self._ob_forms[fk], v.core_hull if exact else None)
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(spec, hit, rc, v)

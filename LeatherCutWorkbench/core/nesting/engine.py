@@ -26,6 +26,7 @@ from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
+from .hide_shapes import simplify_for_hides
 from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
@@ -119,7 +120,7 @@ def _workers(options: NestOptions) -> int:
 _GRACE_S = 0.3
 
 
-def _deadlines(t_start: float, budget: float, n_copies: int
+def _deadlines(t_start: float, budget: float, n_copies: int, hides: bool = False
                ) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
@@ -129,13 +130,15 @@ def _deadlines(t_start: float, budget: float, n_copies: int
     The search ends early enough for the final check and layout building
     (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
-    within a second or two; the others fill exactly for up to 40 % of T."""
+    within a second or two; the others fill exactly for up to 40 % of T (hides:
+    70 %: a coarse fill on hides of concave leather parts wastes whole hides)."""
     if budget <= 0:
         return math.inf, math.inf, math.inf, math.inf, math.inf
     reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
-    return t_end, quick, t_start + 0.4 * budget, t_end, t_start + 1.5 * budget + 2.0
+    slow = t_start + (0.7 if hides else 0.4) * budget
+    return t_end, quick, slow, t_end, t_start + 1.5 * budget + 2.0
 
 
 class _Best:
@@ -193,6 +196,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     scale = _grid_scale(types, options)
     half_gap = options.spacing / 2.0
     variants = make_variants(types, scale, half_gap, options.chord_tol)
+    if options.container.kind == "hide":
+        variants = simplify_for_hides(variants)
     type_variants = [[v.index for v in variants if v.type_index == i] for i in range(len(types))]
     by_key = {p.id: p for p in parts}
     type_parts = [by_key[t.key] for t in types]
@@ -209,7 +214,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     n_workers = _workers(options)
     budget = options.time_budget
-    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies))
+    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies),
+                                                 options.container.kind == "hide")
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 

@@ -83,3 +83,12 @@ def first_affected(placements: Placements, position: int) -> int:
 def as_hide_indices(placements: Placements, order: Sequence[int]) -> Placements:
     """Placements with hide positions replaced by indices of the available hides."""
     return [(si, order[b] if b >= 0 else b, vi, tx, ty) for (si, b, vi, tx, ty) in placements]
+
+
+def tight_order(net_areas: Sequence[float], k: int) -> List[int]:
+    """The ``k`` hides of the smallest net area first (largest of them first),
+    then the others, largest first: a fill that places every copy on those k
+    has the best utilisation k hides can give; what does not fit spills over."""
+    small = sorted(range(len(net_areas)), key=lambda i: (net_areas[i], i))[:max(k, 0)]
+    rest = [i for i in initial_order(net_areas) if i not in set(small)]
+    return sorted(small, key=lambda i: (-net_areas[i], i)) + rest

@@ -43,7 +43,8 @@ from dataclasses import dataclass
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinSpec, Placer
-from .hide_choice import as_hide_indices, first_affected, hide_cost, initial_order, swap_hides
+from .hide_choice import (as_hide_indices, first_affected, hide_cost, initial_order, swap_hides,
+                          tight_order, used_positions)
 from .shapes import Variant
 
 Gene = Tuple[int, Optional[int]]          # (type index, forced variant or None)
@@ -209,12 +210,21 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly
-    if worker != 0 or placer.nfps.mean_exact_s() < 0.005:
+    # (hides: exact always -- a coarse layout of concave leather parts wastes hides)
+    if worker != 0 or placer.nfps.mean_exact_s() < 0.005 or problem.hide_net is not None:
         placer.clock.exact_until = math.inf
     hides = placer.bin_order
     best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
     budget.improved(best[0], best[1], _out(tr.placements, hides))
     evals = 1
+    if worker == 0 and problem.hide_net is not None and not budget.done(evals):
+        tr = placer.place(starts[0])          # the quick first fill again, exactly
+        evals += 1
+        if tr is not None:
+            c = cost_of(problem, starts[0], tr.placements, hides)
+            if c < best[0]:
+                best = (c, starts[0], tr)
+                budget.improved(c, starts[0], _out(tr.placements, hides))
     cheap = (time.monotonic() - t0) < 0.25 * max(budget.t_end - t0, 0.0)
     for order in starts[1:]:
         if not cheap or budget.done(evals):
@@ -260,6 +270,22 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         if tr is not None:
             cur_seq, cur_pl = seq, tr
             cur_cost = cost_of(problem, cur_seq, cur_pl.placements, cur_hides)
+    if choose_hides:
+        # the fewest hides the first fills used, as the smallest hides (worker 0),
+        # and one hide fewer (worker 1): the utilisation the hide choice can give
+        k = len(used_positions(cur_pl.placements)) - (worker % 2)
+        order = tight_order(problem.hide_net, k)
+        if k >= 1 and order != cur_hides and not budget.done(evals):
+            placer.bin_order = order
+            tr = placer.place(cur_seq)
+            evals += 1
+            if tr is not None:
+                c = cost_of(problem, cur_seq, tr.placements, order)
+                if c < cur_cost:
+                    cur_cost, cur_pl, cur_hides = c, tr, order
+                    if c < best[0]:
+                        best, best_hides = (c, cur_seq, tr), order
+                        budget.improved(c, cur_seq, _out(tr.placements, order))
     hist = [cur_cost] * history
     step = 0
     while (len(copies) > 1 or choose_hides) and not budget.done(evals):
