@@ -47,7 +47,7 @@ def run_own(path: str, budget: float, workers: int, graded: bool):
     hides = inst.hides
     if not graded:                 # zones forbidden to everyone, as for PackingSolver
         full = hides[0].base_grade
-        parts = [replace(p, grade=full) for p in parts]
+        parts = [replace(p, grade=full, grade_regions=[]) for p in parts]
     opts = NestOptions(container=ContainerSpec.hide(*hides), time_budget=budget, workers=workers,
                        rotations_override=ANGLES)
     t0 = time.monotonic()
@@ -150,23 +150,27 @@ def main() -> None:
     print(f"time budget {a.time:g} s, {a.workers} workers, zones {a.zones}, "
           f"load average {load[0]:.2f} / {load[1]:.2f} / {load[2]:.2f}")
     print("| instance | engine | hides used / available | placed / copies | utilisation of used hides % "
-          "| per hide % | wall s | valid |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| per hide % | wall s | valid | load (1 min) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for path in a.instances:
         name = os.path.splitext(os.path.basename(path))[0]
+        load0 = os.getloadavg()[0]
         rows = [run_own(path, a.time, a.workers, a.zones == "graded")]
+        rows[0]["load"] = load0
         if a.packingsolver_python and a.zones == "forbidden":
             own = rows[0]
             objective = "BinPacking" if own["placed"] == own["copies"] else "Knapsack"
+            load1 = os.getloadavg()[0]
             rows.append(run_packingsolver(a.packingsolver_python, path, a.time, objective))
+            rows[-1]["load"] = load1
         for r in rows:
             if "error" in r:
-                print(f"| {name} | {r['engine']} | error: {r['error']} | | | | | |")
+                print(f"| {name} | {r['engine']} | error: {r['error']} | | | | | | |")
                 continue
             print(f"| {name} | {r['engine']} | {r['hides_used']} / {r['hides']} | "
                   f"{r['placed']} / {r['copies']} | {100 * r['utilisation']:.2f} | "
                   f"{' '.join(f'{100 * u:.1f}' for u in r['per_hide'])} | {r['wall_s']:.1f} | "
-                  f"{'yes' if r['valid'] else 'NO'} |")
+                  f"{'yes' if r['valid'] else 'NO'} | {r['load']:.1f} |")
         sys.stdout.flush()
 
 

@@ -303,6 +303,9 @@ class Part:
     parent_id: Optional[str] = None    # part whose hole this part lies in
     lines: List["OpenChain"] = field(default_factory=list)   # internal / stitch lines (drawn, not cut)
     size: str = ""                     # pattern size (AAMA / ASTM graded sets), "" otherwise
+    #: part regions with their own grade: (grade, closed contour inside the outer),
+    #: drawn, not cut; see core/nesting/part_regions.py
+    grade_regions: List[Tuple[int, Contour]] = field(default_factory=list)
 
     @property
     def net_area(self) -> float:
@@ -322,6 +325,7 @@ class Part:
                        lead_ins=[li.transformed(xf, prefix) for li in self.lead_ins],
                        marks=[m.transformed(xf) for m in self.marks],
                        lines=[ln.transformed(xf) for ln in self.lines],
+                       grade_regions=[(g, c.transformed(xf, prefix)) for g, c in self.grade_regions],
                        rotations=copy.copy(self.rotations))
 
 

@@ -16,6 +16,15 @@ Convention (case-insensitive), first match wins:
 ``<g>`` is a whole number >= 0 (higher = better) or a letter: ``A`` = 4 (best),
 ``B`` = 3, ``C`` = 2, ``D`` = 1 -- the same scale as the hide layers
 ``ZONE_<g>`` / ``HIDE_<g>``, which accept the letters too.
+
+Part regions (a shoe upper's visible zone needs grade A, the rest of the
+part grade B): a closed contour *inside* a part drawn on a layer
+``GRADE_<g>`` / ``QUALITY_<g>`` is not a hole but a region of that part with
+grade g (``Part.grade_regions``): it is drawn, not cut, and on a hide it may
+only lie on material of grade >= g (grade 0: anywhere, e.g. a window that is
+cut away later); the rest of the part keeps the part's grade.  Recognition
+first sees such a contour as a hole; :func:`assign_grades` turns it into a
+region (one info finding each).
 """
 
 from __future__ import annotations
@@ -91,7 +100,7 @@ def assign_grades(parts: Sequence[Part], texts: Sequence[TextNote]) -> List[Find
         inside = [i for i, poly in enumerate(polys) if poly is not None and poly.contains(pt)]
         if inside:
             found.setdefault(min(inside, key=lambda i: polys[i].area), g)
-    findings: List[Finding] = []
+    findings: List[Finding] = list(_regions_from_holes(parts))
     for i, p in enumerate(parts):
         if p.grade:
             continue
@@ -103,4 +112,23 @@ def assign_grades(parts: Sequence[Part], texts: Sequence[TextNote]) -> List[Find
             continue
         p.grade = g
         findings.append(Finding("info", "part-grade", f"part {p.id}: grade {g} from its {how}"))
+    return findings
+
+
+def _regions_from_holes(parts: Sequence[Part]) -> List[Finding]:
+    """Holes drawn on a grade layer become part regions (see module doc)."""
+    findings: List[Finding] = []
+    for p in parts:
+        keep = []
+        for h in p.holes:
+            g = grade_of_layer(h.layer)
+            if g is None:
+                keep.append(h)
+                continue
+            p.grade_regions.append((g, h))
+            p.lead_ins = [li for li in p.lead_ins if li.contour_id != h.id]
+            findings.append(Finding("info", "part-region",
+                                    f"part {p.id}: contour {h.id} on layer {h.layer} is a region "
+                                    f"of grade {g} (drawn, not cut)"))
+        p.holes = keep
     return findings

@@ -56,7 +56,8 @@ class Placer:
     def __init__(self, variants: Sequence[Variant], type_variants: Sequence[Sequence[int]],
                  type_grade: Sequence[int], bins: Sequence[BinSpec], open_new: bool,
                  max_bins: Optional[int], nfps: Optional[NfpCache] = None,
-                 clock: Optional[Clock] = None, type_area: Optional[Sequence[float]] = None):
+                 clock: Optional[Clock] = None, type_area: Optional[Sequence[float]] = None,
+                 region_check=None):
         self.variants = variants
         self.type_variants = type_variants
         self.type_grade = type_grade
@@ -66,14 +67,25 @@ class Placer:
         self.nfps = nfps or NfpCache(variants, clock)
         self.clock = self.nfps.clock
         self.type_area = type_area       # true part areas, grid units^2 (for the hide prune)
+        #: hides: :class:`part_regions.RegionCheck` for parts with graded regions (or None)
+        self.region_check = region_check
         #: default ``variant_cap`` of :meth:`place` (None: every orientation)
         self.variant_cap: Optional[int] = None
+        #: hides: spec index per fill position (None: in the given order)
+        self.bin_order: Optional[List[int]] = None
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
 
     # ---------------------------------------------------------------- regions
+    def _spec_index(self, b: int) -> int:
+        """The container spec of the bin at position ``b`` (hides: through
+        ``bin_order``, the order in which the fill opens them)."""
+        if self.bin_order is not None and b < len(self.bin_order):
+            return self.bin_order[b]
+        return min(b, len(self.bin_specs) - 1)
+
     def _spec(self, b: int) -> BinSpec:
-        return self.bin_specs[min(b, len(self.bin_specs) - 1)]
+        return self.bin_specs[self._spec_index(b)]
 
     def _ifp(self, b: int, v: Variant, extent: int) -> List[IntPath]:
         """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""
@@ -81,7 +93,7 @@ class Placer:
         if spec.kind == "hide":
             from .nfp import obstacle_forms, region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
-            key = (min(b, len(self.bin_specs) - 1) * 100003 + rk, v.index, True)
+            key = (self._spec_index(b) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
                 # out of time: the region of the bounding box (a subset, still valid;
@@ -95,8 +107,13 @@ class Placer:
                     fk = (key[0], exact or rk not in spec.coarse)
                     if fk not in self._ob_forms:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
+                    # exact: the true ring against the defects, its convex hull against
+                    # the hide's outline (a few times faster; a hide is nearly convex)
                     hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
-                                     self._ob_forms[fk])
+                                     self._ob_forms[fk], v.core_hull if exact else None)
+                    rc = self.region_check
+                    if exact and hit and rc is not None and rc.applies(v.type_index):
+                        hit = self._region_fit(spec, hit, rc, v)
                     self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
@@ -107,6 +124,24 @@ class Placer:
         if lx > hx or ly > hy:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
+
+    @staticmethod
+    def _region_fit(spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
+        """``fit`` cut down to where each stricter region of ``v``'s part lies in
+        the hide region of its grade (exact, zone borders need no margin)."""
+        from .nfp import region_ifp
+        for g, ring in rc.grid_rings(v.type_index, v.angle, v.mirrored):
+            outers, obstacles = spec.regions[spec.grade_key.get(g, g)]
+            inner = region_ifp(outers, obstacles, ring)
+            if not inner:
+                return []
+            c = pyclipper.Pyclipper()
+            c.AddPaths(fit, pyclipper.PT_SUBJECT, True)
+            c.AddPaths(inner, pyclipper.PT_CLIP, True)
+            fit = c.Execute(pyclipper.CT_INTERSECTION, _NZ, _NZ)
+            if not fit:
+                return []
+        return fit
 
     def _may_fit(self, b: int, state: "BinState", t: int) -> bool:
         """False when a copy of type ``t`` is larger than the material left on
@@ -160,6 +195,15 @@ class Placer:
         v = self.variants[vi]
         pts = np.array([q for p in free for q in p], dtype=np.int64)
         right = pts[:, 0] + v.bbox[2]
+        rc = self.region_check
+        if rc is not None and rc.applies(v.type_index):
+            # a part with graded regions: the best candidate whose stricter
+            # regions lie on good enough material (at most _REGION_TRIES tested)
+            sb = self._spec_index(b)
+            for k in np.lexsort((pts[:, 0], pts[:, 1], right))[:_REGION_TRIES]:
+                if rc.ok(sb, v.type_index, v.angle, v.mirrored, int(pts[k, 0]), int(pts[k, 1])):
+                    return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
+            return None
         k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
         return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
 
@@ -239,6 +283,9 @@ def _box(ring: IntPath) -> IntPath:
     ys = [p[1] for p in ring]
     return [[min(xs), min(ys)], [max(xs), min(ys)], [max(xs), max(ys)], [min(xs), max(ys)]]
 
+
+#: Candidate positions tested per variant and bin for a part with graded regions.
+_REGION_TRIES = 64
 
 #: Open strips are searched up to this x (grid units) -- far beyond any layout.
 _OPEN_STRIP = 1 << 40

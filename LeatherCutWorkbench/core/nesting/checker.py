@@ -14,7 +14,11 @@ A layout is valid when, within the length tolerance ``tol`` (mm):
 * it keeps ``spacing - tol`` from every other part and ``margin - tol`` from
   the container edge and the defects;
 * on a hide, it lies only in zones of its grade or better (the innermost /
-  smallest zone containing a point decides its grade, else ``base_grade``).
+  smallest zone containing a point decides its grade, else ``base_grade``);
+  a part with graded regions (``Part.grade_regions``): each region (where
+  regions overlap, the smallest decides) lies on material of the region's
+  grade or better, the rest of the part on material of the part's grade or
+  better, and a region of grade 0 may also cover defects.
 
 :func:`check_layout` returns a list of problems (empty = valid).
 """
@@ -55,6 +59,19 @@ def _angle_ok(angle: float, allowed: Optional[Sequence[float]]) -> bool:
     return False
 
 
+def _graded_pieces(part: Part, whole: Polygon, chord_tol: float) -> List[tuple]:
+    """(grade, shape, label) of the part's regions (smallest first, each
+    without the smaller ones) and of the rest, in part coordinates."""
+    regs = sorted(((g, Polygon(c.points(chord_tol)), k) for k, (g, c) in enumerate(part.grade_regions)),
+                  key=lambda r: r[1].area)
+    out, taken = [], Polygon()
+    for g, poly, k in regs:
+        out.append((g, poly.intersection(whole).difference(taken), f"region {k}"))
+        taken = taken.union(poly)
+    out.append((part.grade, whole.difference(taken), "rest"))
+    return [o for o in out if not o[1].is_empty]
+
+
 def _zone_grade_region(c: Container, grade: int):
     """The part of the hide a part of ``grade`` may use (shapely geometry)."""
     region = Polygon(c.outline) if c.base_grade >= grade else Polygon()
@@ -74,6 +91,7 @@ def check_layout(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,
     by_id: Dict[str, Part] = {p.id: p for p in parts}
     conts: Dict[str, Container] = {c.id: c for c in layout.containers}
     base = {p.id: part_polygon(p, chord_tol) for p in parts}
+    graded = {p.id: _graded_pieces(p, base[p.id], chord_tol) for p in parts if p.grade_regions}
     seen = set()
     placed: List[Polygon] = []
     labels: List[str] = []
@@ -109,18 +127,26 @@ def check_layout(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,
         if margin > tol and g.exterior.distance(outline.exterior) < margin - tol \
                 and out_area <= tol * per:
             problems.append(f"{lab}: closer than the margin {margin:g} mm to the edge of {c.id}")
+        pieces = [(part.grade, g, "")] if part.id not in graded else [
+            (pg, placed_polygon(sh, pl.x, pl.y, pl.angle, pl.mirrored), f" {lab}")
+            for pg, sh, lab in graded[part.id]]
+        strict = g
+        for pg, sh, _lab in pieces:
+            if pg <= 0 and part.id in graded:        # a grade-0 region may cover defects
+                strict = strict.difference(sh)
         for k, d in enumerate(c.defects):
             dp = Polygon(d)
-            ov = g.intersection(dp).area
+            ov = strict.intersection(dp).area
             if ov > tol * min(per, dp.exterior.length):
                 problems.append(f"{lab}: covers defect {k} of {c.id} ({ov:.4g} mm2)")
-            elif margin > tol and g.distance(dp) < margin - tol:
+            elif margin > tol and strict.distance(dp) < margin - tol:
                 problems.append(f"{lab}: closer than the margin {margin:g} mm to defect {k} of {c.id}")
-        if c.zones or c.base_grade < part.grade:
-            allowed_region = _zone_grade_region(c, part.grade)
-            bad = g.difference(allowed_region).area
+        for pg, sh, plab in pieces:
+            if pg <= 0 or not (c.zones or c.base_grade < pg):
+                continue
+            bad = sh.difference(_zone_grade_region(c, pg)).area
             if bad > tol * per:
-                problems.append(f"{lab}: {bad:.4g} mm2 in material below grade {part.grade}")
+                problems.append(f"{lab}{plab}: {bad:.4g} mm2 in material below grade {pg}")
         placed.append(g)
         labels.append(lab)
         where.append(pl.container)

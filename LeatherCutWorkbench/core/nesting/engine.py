@@ -26,7 +26,9 @@ from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
+from .hide_shapes import simplify_for_hides
 from .options import NestOptions
+from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part, to_grid
 
@@ -118,7 +120,7 @@ def _workers(options: NestOptions) -> int:
 _GRACE_S = 0.3
 
 
-def _deadlines(t_start: float, budget: float, n_copies: int
+def _deadlines(t_start: float, budget: float, n_copies: int, hides: bool = False
                ) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
@@ -128,13 +130,15 @@ def _deadlines(t_start: float, budget: float, n_copies: int
     The search ends early enough for the final check and layout building
     (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
-    within a second or two; the others fill exactly for up to 40 % of T."""
+    within a second or two; the others fill exactly for up to 40 % of T (hides:
+    70 %: a coarse fill on hides of concave leather parts wastes whole hides)."""
     if budget <= 0:
         return math.inf, math.inf, math.inf, math.inf, math.inf
     reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
-    return t_end, quick, t_start + 0.4 * budget, t_end, t_start + 1.5 * budget + 2.0
+    slow = t_start + (0.7 if hides else 0.4) * budget
+    return t_end, quick, slow, t_end, t_start + 1.5 * budget + 2.0
 
 
 class _Best:
@@ -192,17 +196,26 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     scale = _grid_scale(types, options)
     half_gap = options.spacing / 2.0
     variants = make_variants(types, scale, half_gap, options.chord_tol)
+    if options.container.kind == "hide":
+        variants = simplify_for_hides(variants)
     type_variants = [[v.index for v in variants if v.type_index == i] for i in range(len(types))]
-    grades = [t.grade for t in types]
-    bins, hides, open_new, max_bins = _bins(options, scale, half_gap, grades)
+    by_key = {p.id: p for p in parts}
+    type_parts = [by_key[t.key] for t in types]
+    grades = [nesting_grade(p) for p in type_parts]
+    bins, hides, open_new, max_bins = _bins(options, scale, half_gap,
+                                            grades + region_grade_levels(type_parts))
     problem = Problem(variants, type_variants, grades, [t.area for t in types], bins,
-                      open_new, max_bins, scale)
+                      open_new, max_bins, scale,
+                      hide_net=[net_area(h) for h in hides] if hides else None,
+                      region_check=region_check(type_parts, hides, scale, options.tolerance,
+                                                options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
     report(progress, 0.02, f"nesting {len(copies)} copies of {len(types)} parts")
 
     n_workers = _workers(options)
     budget = options.time_budget
-    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies))
+    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies),
+                                                 options.container.kind == "hide")
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 
@@ -263,7 +276,7 @@ def _summary(problem: Problem, options: NestOptions, scale: float, net: Sequence
     if spec.kind == "sheet":
         util = area / (used * spec.width * spec.height) if used else 0.0
         return f"{head} on {used} sheet(s), utilisation {100 * util:.1f} %"
-    total = sum(net[:used])
+    total = sum(net[b] for b in {b for (_si, b) in placed})   # b: hide index
     util = area / total if total else 0.0
     return f"{head} on {used} hide(s), utilisation {100 * util:.1f} %"
 
@@ -426,6 +439,26 @@ def material_grades(layout: Layout, placed: Sequence[Polygon], grade: Dict[str, 
     return out
 
 
+def _add_region_grades(parts: Sequence[Part], layout: Layout, rows: List[Dict[str, object]],
+                       options: NestOptions) -> None:
+    """Rows of ``material_grades`` for parts with graded regions get ``regions``:
+    per piece (``region k`` / ``rest``) the grade it needs and the grade it lies on."""
+    from .part_regions import pieces, region_grades
+    by_id = {p.id: p for p in parts if p.grade_regions}
+    if not by_id:
+        return
+    conts = {c.id: c for c in layout.containers}
+    split = {pid: pieces(p, options.chord_tol) for pid, p in by_id.items()}
+    cache: Dict[tuple, object] = {}
+    for pl, row in zip(layout.placements, rows):
+        if pl.part_id not in by_id:
+            continue
+        placed = [(g, placed_polygon(sh, pl.x, pl.y, pl.angle, pl.mirrored), lab)
+                  for g, sh, lab in split[pl.part_id]]
+        row["regions"] = region_grades(by_id[pl.part_id], placed, conts[pl.container],
+                                       options.tolerance, cache)
+
+
 def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) -> None:
     """(Re)compute the layout's figures from its placements: strip length and
     density (the strip outline is set to the used length), sheet and hide
@@ -446,6 +479,7 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
     metrics = layout.metrics
     if spec.kind == "hide":
         metrics["grades"] = material_grades(layout, placed, grade, options.tolerance)
+        _add_region_grades(parts, layout, metrics["grades"], options)
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
         c = layout.containers[0]

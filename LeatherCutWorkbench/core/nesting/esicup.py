@@ -17,7 +17,11 @@ jagua-rs' older PascalCase files (``Items`` / ``Objects`` with ``Demand``,
 ``Shape.Inner``) read the same.  Bins become hides (:class:`Container`):
 full quality = 1 + the highest quality in the file is the hide's base grade,
 zones keep their quality as grade, holes and quality-0 zones are defects; an
-item's grade is its ``min_quality`` (else full quality).
+item's grade is its ``min_quality`` (else full quality).  Items may carry
+``zones`` of their own (Baldacci Test8/10: ``Zones`` with ``Quality`` q
+inside an item; jagua-rs itself does not read them): a part region that must
+lie on quality >= q, q = 0 anywhere on the hide (``Part.grade_regions``,
+:mod:`part_regions`); the rest of the item needs the item's grade.
 
 Items become :class:`Part` objects with line segments, so an instance runs
 through exactly the same engine as recognised DXF parts.
@@ -112,9 +116,19 @@ def _items(path: str, items: Any, grade_of=None) -> List[Part]:
             raise InputError(f"malformed item ({type(exc).__name__}: {exc})", src) from None
         if demand < 0:
             raise InputError(f"negative demand {demand}", src)
+        regions = []
+        for k, z in enumerate(it.get("zones") or []):
+            try:
+                zo, _zi = _rings(z["shape"], f"{src} zone {k}")
+                regions.append((int(z["quality"]), _contour(f"{iid}/zone{k}", zo, True)))
+            except InputError:
+                raise
+            except (KeyError, TypeError, ValueError) as exc:
+                raise InputError(f"malformed item zone {k} ({type(exc).__name__}: {exc})",
+                                 src) from None
         parts.append(Part(id=iid, outer=outer, holes=holes, name=iid, quantity=demand,
                           rotations=rots, mirror_allowed=False,
-                          grade=grade_of(it) if grade_of else 0))
+                          grade=grade_of(it) if grade_of else 0, grade_regions=regions))
     if not parts:
         raise InputError("instance has no items", path)
     return parts
@@ -160,6 +174,7 @@ def _read_bins(path: str, data: Dict) -> EsicupInstance:
         bins, items = data["bins"], data["items"]
         quals = [int(z["quality"]) for b in bins for z in b.get("zones", [])]
         quals += [int(it["min_quality"]) for it in items if it.get("min_quality") is not None]
+        quals += [int(z["quality"]) for it in items for z in it.get("zones") or []]
     except (KeyError, TypeError, ValueError) as exc:
         raise InputError(f"malformed bin-packing instance ({type(exc).__name__}: {exc})",
                          path) from None

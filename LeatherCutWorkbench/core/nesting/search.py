@@ -43,6 +43,8 @@ from dataclasses import dataclass
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinSpec, Placer
+from .hide_choice import (as_hide_indices, first_affected, hide_cost, initial_order, swap_hides,
+                          tight_order, used_positions)
 from .shapes import Variant
 
 Gene = Tuple[int, Optional[int]]          # (type index, forced variant or None)
@@ -64,16 +66,25 @@ class Problem:
 
     #: grid units per mm (the hide prune compares areas in grid units)
     scale: float = 1.0
+    #: hides: net area (mm^2) per available hide; the search then also chooses
+    #: the hides and their fill order (:mod:`hide_choice`)
+    hide_net: Optional[List[float]] = None
+    #: hides: :class:`part_regions.RegionCheck` for parts with graded regions
+    region_check: Optional[object] = None
 
     def placer(self) -> Placer:
         return Placer(self.variants, self.type_variants, self.type_grade, self.bins,
                       self.open_new, self.max_bins,
-                      type_area=[a * self.scale * self.scale for a in self.type_area])
+                      type_area=[a * self.scale * self.scale for a in self.type_area],
+                      region_check=self.region_check)
 
 
-def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements) -> Tuple[float, int, int]:
+def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements,
+            hide_order: Optional[Sequence[int]] = None) -> tuple:
     """(area left out, containers used, extent of the last container): lower is
-    better, compared in that order."""
+    better, compared in that order.  Hides (``problem.hide_net``): see
+    :func:`hide_choice.hide_cost` (the net area of the hides used comes before
+    the extent)."""
     unplaced_area = 0.0
     last_bin = -1
     for (si, b, vi, tx, ty) in placements:
@@ -84,6 +95,9 @@ def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements) -> Tu
     for (si, b, vi, tx, ty) in placements:
         if b == last_bin and b >= 0:
             extent = max(extent, tx + problem.variants[vi].bbox[2])
+    if problem.hide_net is not None:
+        order = hide_order if hide_order is not None else range(len(problem.hide_net))
+        return hide_cost(placements, order, problem.hide_net, unplaced_area, extent)
     return (round(unplaced_area, 6), last_bin + 1, extent)
 
 
@@ -196,11 +210,21 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly
-    if worker != 0 or placer.nfps.mean_exact_s() < 0.005:
+    # (hides: exact always -- a coarse layout of concave leather parts wastes hides)
+    if worker != 0 or placer.nfps.mean_exact_s() < 0.005 or problem.hide_net is not None:
         placer.clock.exact_until = math.inf
-    best = (cost_of(problem, starts[0], tr.placements), starts[0], tr)
-    budget.improved(best[0], best[1], tr.placements)
+    hides = placer.bin_order
+    best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
+    budget.improved(best[0], best[1], _out(tr.placements, hides))
     evals = 1
+    if worker == 0 and problem.hide_net is not None and not budget.done(evals):
+        tr = placer.place(starts[0])          # the quick first fill again, exactly
+        evals += 1
+        if tr is not None:
+            c = cost_of(problem, starts[0], tr.placements, hides)
+            if c < best[0]:
+                best = (c, starts[0], tr)
+                budget.improved(c, starts[0], _out(tr.placements, hides))
     cheap = (time.monotonic() - t0) < 0.25 * max(budget.t_end - t0, 0.0)
     for order in starts[1:]:
         if not cheap or budget.done(evals):
@@ -209,11 +233,16 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
         evals += 1
         if tr is None:
             break
-        c = cost_of(problem, order, tr.placements)
+        c = cost_of(problem, order, tr.placements, hides)
         if c < best[0]:
             best = (c, order, tr)
-            budget.improved(c, order, tr.placements)
+            budget.improved(c, order, _out(tr.placements, hides))
     return best, evals
+
+
+def _out(placements: Placements, hide_order: Optional[List[int]]) -> Placements:
+    """Placements as they leave the worker (hide positions -> hide indices)."""
+    return placements if hide_order is None else as_hide_indices(placements, hide_order)
 
 
 def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
@@ -226,9 +255,13 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     workers try all."""
     placer = problem.placer()
     placer.variant_cap = 4 if worker == 0 else None
+    choose_hides = problem.hide_net is not None and len(problem.hide_net) > 1
+    if problem.hide_net is not None:
+        placer.bin_order = initial_order(problem.hide_net)
     rng = random.Random(seed * 1000003 + worker)
     best, evals = _first_fills(problem, placer, copies, worker, budget)
     cur_cost, cur_seq, cur_pl = best
+    cur_hides = best_hides = placer.bin_order
     if worker % 2 == 1 and len(copies) > 1 and not budget.done(evals):
         seq = list(cur_seq)                   # diversify the second worker's start
         rng.shuffle(seq)
@@ -236,28 +269,55 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         evals += 1
         if tr is not None:
             cur_seq, cur_pl = seq, tr
-            cur_cost = cost_of(problem, cur_seq, cur_pl.placements)
+            cur_cost = cost_of(problem, cur_seq, cur_pl.placements, cur_hides)
+    if choose_hides:
+        # the fewest hides the first fills used, as the smallest hides (worker 0),
+        # and one hide fewer (worker 1): the utilisation the hide choice can give
+        k = len(used_positions(cur_pl.placements)) - (worker % 2)
+        order = tight_order(problem.hide_net, k)
+        if k >= 1 and order != cur_hides and not budget.done(evals):
+            placer.bin_order = order
+            tr = placer.place(cur_seq)
+            evals += 1
+            if tr is not None:
+                c = cost_of(problem, cur_seq, tr.placements, order)
+                if c < cur_cost:
+                    cur_cost, cur_pl, cur_hides = c, tr, order
+                    if c < best[0]:
+                        best, best_hides = (c, cur_seq, tr), order
+                        budget.improved(c, cur_seq, _out(tr.placements, order))
     hist = [cur_cost] * history
     step = 0
-    while len(copies) > 1 and not budget.done(evals):
+    while (len(copies) > 1 or choose_hides) and not budget.done(evals):
         budget.check_cancel(evals, best[0])
-        new_seq, first = _mutate(rng, cur_seq, problem)
+        new_hides, first = cur_hides, -1
+        if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
+            new_hides, pos = swap_hides(rng, cur_hides, cur_pl.placements)
+            if pos >= 0:
+                first = first_affected(cur_pl.placements, pos)
+            new_seq = cur_seq
+        if first < 0:
+            if len(copies) < 2:
+                break
+            new_hides = cur_hides
+            new_seq, first = _mutate(rng, cur_seq, problem)
         slot = step % history
         h = hist[slot]
         step += 1
         evals += 1
+        placer.bin_order = new_hides
         new_pl = placer.place(new_seq, cur_pl, first,
                               give_up=(max(cur_cost[0], h[0]), problem.type_area))
         if new_pl is not None:                # None: gave up early or out of time
-            c = cost_of(problem, new_seq, new_pl.placements)
+            c = cost_of(problem, new_seq, new_pl.placements, new_hides)
             if c <= cur_cost or c <= h:
-                cur_cost, cur_seq, cur_pl = c, new_seq, new_pl
+                cur_cost, cur_seq, cur_pl, cur_hides = c, new_seq, new_pl, new_hides
                 if c < best[0]:
-                    best = (c, new_seq, new_pl)
-                    budget.improved(c, new_seq, new_pl.placements)
+                    best, best_hides = (c, new_seq, new_pl), new_hides
+                    budget.improved(c, new_seq, _out(new_pl.placements, new_hides))
         if cur_cost < h:
             hist[slot] = cur_cost
-    return best[0], best[1], best[2].placements, evals
+    return best[0], best[1], _out(best[2].placements, best_hides), evals
 
 
 def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int,

@@ -1,0 +1,67 @@
+"""Part outlines with fewer vertices for hide nesting.
+
+Leather parts (car seats, shoe uppers) come as finely flattened curves: a
+Baldacci Test2 part has about 100 vertices.  No-fit polygons of two such
+parts (unions of the sums of their convex pieces) then take ~50 ms and the
+inner-fit region of one in a hide outline (a sweep of vertices x vertices)
+~10 ms, so a first fill of 34 parts on 12 hides with 12 orientations would
+not end within a 10 s budget.
+
+:func:`simplify_for_hides` replaces each variant's outline by a ring that
+*contains* it: grown by ``frac`` of the variant's size, then simplified
+(Douglas-Peucker, shapely) within 90 % of that growth, so every layout of
+the simplified rings is a valid layout of the true parts (the independent
+checker re-checks the true shapes).  The price is a gap of at most
+2 x ``frac`` x size between parts and ``frac`` x size at the hide's edges.
+Holes (parts in holes of parts) are kept exact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import List, Sequence
+
+import pyclipper
+from shapely.geometry import Polygon
+
+from .shapes import IntPath, Variant, convex_hull
+
+#: growth, as a fraction of a variant's larger bounding-box side
+HIDE_SIMPLIFY = 0.0008
+
+#: only outlines with more vertices than this are simplified
+_MIN_VERTICES = 16
+
+
+def _superset(ring: IntPath, d: float) -> IntPath:
+    """A CCW grid ring containing ``ring``: grown by ``d`` grid units (mitred,
+    bevelled beyond 2 d), simplified within 0.9 ``d``; ``ring`` itself when
+    that does not save vertices."""
+    g = Polygon(ring).buffer(d, 4, join_style=2, mitre_limit=2.0).simplify(0.9 * d)
+    if g.is_empty or g.geom_type != "Polygon":
+        return ring
+    out = [[int(round(x)), int(round(y))] for x, y in list(g.exterior.coords)[:-1]]
+    if not 3 <= len(out) < len(ring) or not Polygon(out).covers(Polygon(ring)):
+        return ring                      # (a simplification that cut a corner: keep exact)
+    return out if pyclipper.Orientation(out) else out[::-1]
+
+
+def simplify_for_hides(variants: Sequence[Variant], frac: float = HIDE_SIMPLIFY) -> List[Variant]:
+    """Variants whose ``outer`` / ``core`` are replaced by simplified rings that
+    contain them (see module doc); bbox and hulls follow."""
+    out: List[Variant] = []
+    for v in variants:
+        if len(v.outer) <= _MIN_VERTICES:
+            out.append(v)
+            continue
+        d = frac * max(v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1])
+        if d < 8:                        # grid units: too small a part to gain anything
+            out.append(v)
+            continue
+        outer = _superset(v.outer, d)
+        core = _superset(v.core, d)
+        xs = [p[0] for p in outer]
+        ys = [p[1] for p in outer]
+        out.append(replace(v, outer=outer, core=core, bbox=(min(xs), min(ys), max(xs), max(ys)),
+                           hull=convex_hull(outer), core_hull=convex_hull(core)))
+    return out

@@ -1,0 +1,87 @@
+"""Which hides to use: fewest hides first, then the best utilisation of the
+hides used (the smallest net area that holds every copy), whatever the
+order of the hides in the file."""
+
+import os
+from dataclasses import replace
+
+from LeatherCutWorkbench.core.model import Container
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
+from LeatherCutWorkbench.core.nesting.containers import net_area
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+ANGLES = [0.0, 90.0, 180.0, 270.0]
+
+
+def _hides_and_parts():
+    """Baldacci Test8's hide outline (2.5 m^2) at 1.6x and 1x size, the big one
+    first in the file; a third of Test8's copies (fit on the small hide)."""
+    inst = read_esicup(os.path.join(DATA, "Test8.json"))
+    outline = inst.hides[0].outline
+    big = Container(id="big", kind="hide", outline=[(1.6 * x, 1.6 * y) for x, y in outline],
+                    base_grade=1)
+    small = Container(id="small", kind="hide", outline=list(outline), base_grade=1)
+    parts = [replace(p, grade=1, grade_regions=[], quantity=max(1, p.quantity // 3))
+             for p in inst.parts]
+    return [big, small], parts
+
+
+def test_the_smaller_hide_that_holds_every_copy_is_chosen():
+    hides, parts = _hides_and_parts()
+    opts = NestOptions(container=ContainerSpec.hide(*hides), time_budget=60, workers=1,
+                       max_evaluations=150, rotations_override=ANGLES, seed=3)
+    lay = nest(parts, opts)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    m = lay.metrics
+    assert m["unplaced_count"] == 0 and m["hides"] == 1
+    # the big hide comes first in the file (and first in the initial fill order)
+    assert [c.id for c in lay.containers] == ["small"]
+    area = sum(p.net_area * p.quantity for p in parts)
+    assert abs(m["utilisation"] - area / net_area(hides[1])) < 1e-4
+    assert m["per_container"][0]["id"] == "small"
+
+
+def test_fewest_hides_before_utilisation():
+    """Every copy of Test8 (1.82 m^2) on two 1.6 m^2 hides (0.8x Test8's
+    outline) would give a higher utilisation than on the 6.4 m^2 one alone
+    (57 % against 28 %), but one hide is fewer."""
+    hides, _parts = _hides_and_parts()
+    inst = read_esicup(os.path.join(DATA, "Test8.json"))
+    parts = [replace(p, grade=1, grade_regions=[]) for p in inst.parts]
+    small = [Container(id=f"small{k}", kind="hide", base_grade=1,
+                       outline=[(0.8 * x, 0.8 * y) for x, y in hides[1].outline]) for k in (1, 2)]
+    spec = ContainerSpec.hide(small[0], small[1], hides[0])
+    opts = NestOptions(container=spec, time_budget=60, workers=1, max_evaluations=60,
+                       rotations_override=ANGLES, seed=3)
+    lay = nest(parts, opts)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0
+    assert [c.id for c in lay.containers] == ["big"]
+
+
+def test_simplified_hide_outlines_contain_the_parts_and_have_fewer_vertices():
+    """A finely flattened seat-like part (a 200-vertex crescent): the ring hide
+    nesting uses contains the true one, has far fewer vertices and is less
+    than 1.5 % larger (a thin crescent: much outline per area)."""
+    import math
+
+    from shapely.geometry import Polygon
+
+    from LeatherCutWorkbench.core.nesting.hide_shapes import simplify_for_hides
+    from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
+    from LeatherCutWorkbench.core.model import Part
+    from nest_shapes import poly_contour
+
+    outer = [(600 * math.cos(a), 300 * math.sin(a)) for a in
+             (math.pi * k / 100 for k in range(101))]
+    inner = [(400 * math.cos(a), 120 * math.sin(a)) for a in
+             (math.pi * (100 - k) / 100 for k in range(1, 100))]
+    part = Part(id="crescent", outer=poly_contour("o", outer + inner))
+    t = piece_from_part(part, 0.05, 30.0, [0.0, 90.0], False)
+    variants = make_variants([t], 1000.0, 0.0, 0.05)
+    for v, s in zip(variants, simplify_for_hides(variants)):
+        true, simple = Polygon(v.outer), Polygon(s.outer)
+        assert simple.covers(true) and Polygon(s.core).covers(Polygon(v.core))
+        assert len(s.outer) < len(v.outer) / 3
+        assert simple.area < 1.015 * true.area
