@@ -50,7 +50,7 @@ def _clamp(v: float, lo: float, hi: float) -> float:
 
 @njit(cache=True, nogil=True)
 def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local, pad, wmax,
-              pts, start, count, ring_lo, ring_hi, bbox):
+              coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox):
     """Best place for copy ``i`` (see module doc): (x, y, variant, weighted
     penalty).  ``choices`` are the variants its type allows, ``cb`` the core
     bounding boxes per variant, (x0, y0)-(x1, y1) the rectangle; ``pad``
@@ -64,7 +64,7 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
     by = Y[i]
     best = copy_penalty(i, bv, bx, by, X, Y, V, W, nv, 1e300, order, keys,
                         bx + cb[bv, 0] - wmax - 2 * pad, bx + cb[bv, 2] + 2 * pad,
-                        pts, start, count, ring_lo, ring_hi, bbox)
+                        coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox)
     if best <= 0.0:
         return bx, by, bv, best
     nc = choices.shape[0]
@@ -90,7 +90,7 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
             y = _clamp(Y[i] + (np.random.random() - 0.5) * 2.0 * r * h, ly, hy)
         c = copy_penalty(i, v, x, y, X, Y, V, W, nv, best, order, keys,
                          x + cb[v, 0] - wmax - 2 * pad, x + cb[v, 2] + 2 * pad,
-                         pts, start, count, ring_lo, ring_hi, bbox)
+                         coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox)
         if c < best:
             best, bx, by, bv = c, x, y, v
             if best <= 0.0:
@@ -114,7 +114,7 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
                 x, y = bx, _clamp(by - sy, ly, hy)
             c = copy_penalty(i, bv, x, y, X, Y, V, W, nv, best, order, keys,
                              x + cb[bv, 0] - wmax - 2 * pad, x + cb[bv, 2] + 2 * pad,
-                             pts, start, count, ring_lo, ring_hi, bbox)
+                             coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox)
             if c < best:
                 best, bx, by = c, x, y
                 improved = True
@@ -152,6 +152,8 @@ class Separator:
         self.stop = stop or threading.Event()      # set: give up at the next sweep
         n = len(types)
         self.W = np.ones((n, n))
+        #: summed depth of the overlapping pairs the last :meth:`separate` ended with
+        self.last_total = 0.0
 
     def warm_up(self, X, Y, V, x1: float) -> None:
         """Compile (or load from numba's disk cache) every kernel once."""
@@ -159,7 +161,7 @@ class Separator:
         self.overlaps(X, Y, V)
         move_copy(0, X.copy(), Y.copy(), V.copy(), self.W[0], self.choices[self.types[0]], self.cb,
                   self.x0, x1, self.y0, self.y1, self.table.n, 1, 1, self.pad, self.wmax,
-                  *self.arrs)
+                  *self.table.costs(), self.eps, *self.arrs)
 
     def overlaps(self, X, Y, V) -> np.ndarray:
         return overlap_matrix(X, Y, V, self.table.n, *self.arrs)
@@ -172,6 +174,7 @@ class Separator:
         rng = rng or np.random.default_rng(0)
         od = self.overlaps(X, Y, V)
         total = float(od[od > self.eps].sum())
+        self.last_total = total
         if total == 0.0:
             return True
         best = (total, X.copy(), Y.copy(), V.copy())
@@ -185,7 +188,8 @@ class Separator:
             for i in hit:
                 x, y, v, _ = move_copy(int(i), X, Y, V, W[i], self.choices[self.types[i]], self.cb,
                                        self.x0, x1, self.y0, self.y1, nv, self.n_global,
-                                       self.n_local, self.pad, self.wmax, *self.arrs)
+                                       self.n_local, self.pad, self.wmax,
+                                       *self.table.costs(), self.eps, *self.arrs)
                 X[i], Y[i], V[i] = x, y, v
             od = self.overlaps(X, Y, V)
             coll = od > self.eps
@@ -209,4 +213,5 @@ class Separator:
                     X[:], Y[:], V[:] = best[1], best[2], best[3]
                     od = self.overlaps(X, Y, V)
         X[:], Y[:], V[:] = best[1], best[2], best[3]
+        self.last_total = best[0]
         return False

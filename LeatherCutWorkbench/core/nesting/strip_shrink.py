@@ -65,6 +65,11 @@ KEEP = 6
 COMPRESSION_SHARE = 0.2
 COMPRESS_MAX = 0.0005
 COMPRESS_MIN = 0.00002
+#: failed separations at one strip length (each going on from the least
+#: overlapping of the last ``POOL`` failures) before the shrink is made smaller
+RETRIES = 4
+POOL = 3
+#: chance that a fresh squeeze after a failed separation first swaps two large copies
 SWAP_P = 0.5
 
 
@@ -160,11 +165,17 @@ def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
 def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
     """Close the strip from ``bx1`` to ``x1``: copies right of a random cut move
     left by the difference, then every copy is pushed back inside."""
-    cb, x0 = inst.cb, inst.x0
-    cut = rng.uniform(x0, bx1)
+    cb = inst.cb
+    cut = rng.uniform(inst.x0, bx1)
     centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
     X[centre > cut] -= bx1 - x1
-    X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+    _clamp_inside(inst, X, Y, V, x1)
+
+
+def _clamp_inside(inst: _Instance, X, Y, V, x1: float) -> None:
+    """Push every copy's core box back inside the strip closed at ``x1``."""
+    cb = inst.cb
+    X[:] = np.minimum(np.maximum(X, inst.x0 - cb[V, 0]), x1 - cb[V, 2])
     Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
 
 
@@ -196,31 +207,48 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
     best = shared.get()
     frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
     fails = 0
+    failed = False                        # the last separation failed
+    pool: list = []                       # least-overlapping failed layouts at the target x1
+    x1 = None
     found: list = []
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
     while time.monotonic() < deadline and not sep.stop.is_set():
         if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
             # compression: the last part of the time tries ever smaller shrinks
             frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
+            pool, fails = [], 0
         other = shared.get()
         if other[0] < best[0]:
             best = other                  # another worker got further: go on from there
-        bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
-        x1 = bx1 - frac * (bx1 - x0)
-        if fails and rng.random() < SWAP_P:
+            pool, fails = [], 0
+        if pool and fails < RETRIES:
+            # go on from a failed attempt at the same length (it has less overlap
+            # than a fresh squeeze), disrupted so the separator leaves its trap
+            k = int(rng.integers(len(pool))) if rng.random() < 0.5 else 0
+            X, Y, V = pool[k][1].copy(), pool[k][2].copy(), pool[k][3].copy()
             _swap_large(inst, X, Y, V, rng)
-        _squeeze(inst, X, Y, V, bx1, x1, rng)
+            _clamp_inside(inst, X, Y, V, x1)
+        else:
+            if pool:                       # RETRIES failures at this length: shrink less
+                frac *= SHRINK_BACKOFF
+                if frac < lo:
+                    frac = hi
+                pool, fails = [], 0
+            bx1, X, Y, V = best[0], best[1].copy(), best[2].copy(), best[3].copy()
+            x1 = bx1 - frac * (bx1 - x0)
+            if failed and rng.random() < SWAP_P:
+                _swap_large(inst, X, Y, V, rng)
+            _squeeze(inst, X, Y, V, bx1, x1, rng)
         if sep.separate(X, Y, V, x1, deadline, rng=rng):
             best = (inst.right_edge(X, V), X, Y, V)
             shared.offer(best)
             found = (found + [best])[-KEEP:]
             frac = min(hi, frac * 1.5)
-            fails = 0
+            pool, fails, failed = [], 0, False
         else:
             fails += 1
-            frac *= SHRINK_BACKOFF
-            if frac < lo:
-                frac = hi
+            failed = True
+            pool = sorted(pool + [(sep.last_total, X, Y, V)], key=lambda st: st[0])[:POOL]
     return found
 
 
