@@ -152,8 +152,6 @@ class Separator:
         self.stop = stop or threading.Event()      # set: give up at the next sweep
         n = len(types)
         self.W = np.ones((n, n))
-        #: summed depth of the overlapping pairs the last :meth:`separate` ended with
-        self.last_total = 0.0
 
     def warm_up(self, X, Y, V, x1: float) -> None:
         """Compile (or load from numba's disk cache) every kernel once."""
@@ -174,7 +172,6 @@ class Separator:
         rng = rng or np.random.default_rng(0)
         od = self.overlaps(X, Y, V)
         total = float(od[od > self.eps].sum())
-        self.last_total = total
         if total == 0.0:
             return True
         best = (total, X.copy(), Y.copy(), V.copy())
@@ -213,5 +210,4 @@ class Separator:
                     X[:], Y[:], V[:] = best[1], best[2], best[3]
                     od = self.overlaps(X, Y, V)
         X[:], Y[:], V[:] = best[1], best[2], best[3]
-        self.last_total = best[0]
         return False
