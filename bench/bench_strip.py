@@ -6,8 +6,8 @@ instances, same time budget, one after the other in the same run.
                                           [--instances albano,fu,shapes0,shirts] [--workers 2]
 
 "own+phase" is :func:`strip_shrink.nest_compacted`: the engine's search for
-SEARCH_SHARE of the budget, then the overlap-minimisation phase until the
-budget ends.  Every layout is re-checked with the independent checker (no
+SEARCH_SHARE of the budget (less with many copies), then the overlap-minimisation
+phase until the budget ends.  Every layout is re-checked with the independent checker (no
 overlap, inside the strip, allowed rotations only, every copy placed) before
 its density is reported.  Wall and CPU seconds (this process + its worker
 processes) are given per run.  Prints a Markdown table.

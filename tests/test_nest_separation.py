@@ -13,11 +13,11 @@ from LeatherCutWorkbench.core.model import Container, Layout, Placement
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
 from LeatherCutWorkbench.core.nesting.engine import fill_metrics
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
-from LeatherCutWorkbench.core.nesting.overlap import PairTable, pair_depth
+from LeatherCutWorkbench.core.nesting.overlap import PairTable, copy_penalty, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
 from LeatherCutWorkbench.core.nesting.separation import Separator
-from LeatherCutWorkbench.core.nesting.strip_shrink import (_Instance, improve_last_sheet, improve_strip,
-                                                         nest_compacted)
+from LeatherCutWorkbench.core.nesting.strip_shrink import (_Instance, _search_share, improve_last_sheet,
+                                                         improve_strip, nest_compacted)
 
 from nest_shapes import frame, rect
 
@@ -83,6 +83,38 @@ def test_depth_is_zero_for_a_part_inside_the_hole_of_another():
     p = 0 * tab.n + 1                      # the square around the fixed frame
     assert pair_depth(4000.0, 4000.0, p, *tab.arrays()) == 0.0           # inside the hole
     assert pair_depth(500.0, 4000.0, p, *tab.arrays()) > 400.0           # on the frame's bar
+
+
+def _penalty_of_first(tab, X, ramp=1.0):
+    """Cost of copy 0 of three unit-weight copies of variant 0 (all at y = 0)."""
+    X = np.asarray(X, dtype=np.float64)
+    Y, V, W = np.zeros(3), np.zeros(3, dtype=np.int64), np.ones(3)
+    order = np.argsort(X)
+    return copy_penalty(0, 0, X[0], 0.0, X, Y, V, W, 1, 1e300, order, X[order], -1e9, 1e9,
+                        *tab.costs(), ramp, *tab.arrays())
+
+
+def test_two_shallow_overlaps_cost_more_than_one_overlap_of_their_summed_depth():
+    # the search must prefer fewer overlapping pairs: with cost = depth alone, two
+    # 0.5 mm overlaps and one 1 mm overlap cost the same and shallow overlaps pile up
+    v = make_variants([piece_from_part(rect("s", 10, 10), 0.05, 90, [0])], 1000.0, 0.0, 0.05)
+    tab = PairTable(v)
+    d = 500.0
+    two = _penalty_of_first(tab, [10000.0 - d, 0.0, 20000.0 - 2 * d])
+    one = _penalty_of_first(tab, [10000.0 - 2 * d, 0.0, 50000.0])
+    assert two > one * 1.05
+    # contact (depth within the ramp) stays nearly free, no overlap costs nothing;
+    # c = the distance at which the (slightly grown) outlines touch
+    c = pair_depth(0.0, 0.0, 0, *tab.arrays())
+    assert _penalty_of_first(tab, [c - 0.2, 0.0, 50000.0], ramp=50.0) < 1.0
+    assert _penalty_of_first(tab, [c - 100.0, 0.0, 50000.0], ramp=50.0) > 200.0
+    assert _penalty_of_first(tab, [c + 1.0, 0.0, 50000.0]) == 0.0
+
+
+def test_engine_search_share_falls_with_many_copies():
+    assert _search_share([rect("a", 5, 5, q=24)]) == pytest.approx(0.25)
+    assert _search_share([rect("a", 5, 5, q=50), rect("b", 5, 5, q=49)]) == pytest.approx(0.101, abs=1e-3)
+    assert _search_share([rect("a", 5, 5, q=1000)]) == pytest.approx(0.08)
 
 
 def test_engine_layout_is_never_made_invalid_or_longer():
