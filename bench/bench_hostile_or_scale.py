@@ -41,6 +41,7 @@ elif what == "stages":
     # where recognise --json spends its time: the same calls as the CLI, one at a time
     import io
     from LeatherCutWorkbench.cli import _json_default
+    from LeatherCutWorkbench.cli.json_rows import write_rows
     from LeatherCutWorkbench.cli.recognise_cmd import recognition_json
     from LeatherCutWorkbench.core.dxfimport import read_drawing
     from LeatherCutWorkbench.core.job import JobOptions, chosen_parts
@@ -54,7 +55,7 @@ elif what == "stages":
     r = recognise(d, RecogniseOptions()); lap("recognition (recognise)")
     c = chosen_parts(d, r, JobOptions()); lap("part choices (chosen_parts)")
     data = recognition_json(c, path); lap("report dict (recognition_json)")
-    json.dump(data, io.StringIO(), indent=2, default=_json_default); lap("JSON text (json.dump)")
+    write_rows(data, io.StringIO(), default=_json_default); lap("JSON text (write_rows)")
     stages["reader"] = d.stats["file"].get("reader")
     code = 0
 else:

@@ -35,6 +35,7 @@ class Report:
     text: str
     exit_code: int = 0
     extra: List[str] = field(default_factory=list)
+    rows: bool = False    # JSON: one line per part / flag (cli/json_rows.py), for large reports
 
 
 def add_common_options(p: argparse.ArgumentParser) -> None:
@@ -65,7 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def print_report(report: Report, as_json: bool) -> None:
-    if as_json:
+    if as_json and report.rows:
+        from .json_rows import write_rows
+        write_rows(report.data, sys.stdout, default=_json_default)
+        sys.stdout.write("\n")
+    elif as_json:
         json.dump(report.data, sys.stdout, indent=2, sort_keys=False, default=_json_default)
         sys.stdout.write("\n")
     elif report.text:

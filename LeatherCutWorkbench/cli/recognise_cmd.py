@@ -8,10 +8,11 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Any, Dict, FrozenSet, List
+from typing import Any, Dict, FrozenSet, List, Tuple
 
-from ..core.geometry import Segment
-from ..core.model import Contour, Recognition
+from ..core.gc_pause import collector_paused
+from ..core.geometry import LineSeg, Segment
+from ..core.model import Contour, Part, Recognition
 from . import Report, add_common_options
 from .stages import add_stage_options, job_options, progress_bar
 
@@ -140,7 +141,7 @@ def run(args: argparse.Namespace) -> Report:
     drawing, rec = load_and_recognise(args.file, options, None if args.json else progress_bar())
     data = recognition_json(rec, args.file)
     data["findings"] = [f.to_json() for f in list(drawing.findings) + list(rec.findings)]
-    return Report(data=data, text=recognition_text(rec, args.file))
+    return Report(data=data, text=recognition_text(rec, args.file), rows=True)
 
 
 # ----------------------------------------------------------------------
@@ -156,35 +157,63 @@ def _seg_json(s: Segment) -> Dict[str, Any]:
     return {"start": _pt(s.start), "end": _pt(s.end), "length": _r(s.length)}
 
 
-def _area(c: Contour) -> float:
-    """Exact area (mm^2) for lines and arcs; polyline area for flattened curves."""
-    from ..core.recognition.from_part import signed_path_area
-    return abs(signed_path_area(c.segments))
+def _contour_stats(c: Contour) -> Tuple[float, float, Tuple[float, float, float, float]]:
+    """(area mm^2, length mm, bbox) of a contour, each computed once.
+
+    Area is exact for lines and arcs (polyline area for flattened curves).  A
+    contour made only of lines (most of a large drawing) is measured in one
+    pass over its segments, with the same operations in the same order as
+    ``signed_path_area``, ``Contour.length`` and ``Contour.bbox``, so the
+    figures are bit for bit the same."""
+    segs = c.segments
+    if not segs or not all(type(s) is LineSeg for s in segs):
+        from ..core.recognition.from_part import signed_path_area
+        return abs(signed_path_area(segs)), c.length, c.bbox
+    a = 0.0
+    lengths = []
+    for s in segs:
+        (x0, y0), (x1, y1) = s.start, s.end
+        a += x0 * y1 - x1 * y0
+        lengths.append(math.hypot(x1 - x0, y1 - y0))
+    # Contour.points(): the first start, then every end but the last one
+    xs = [segs[0].start[0]] + [s.end[0] for s in segs[:-1]]
+    ys = [segs[0].start[1]] + [s.end[1] for s in segs[:-1]]
+    return abs(a / 2.0), sum(lengths), (min(xs), min(ys), max(xs), max(ys))
 
 
-def _contour_json(c: Contour) -> Dict[str, Any]:
-    return {"id": c.id, "area": _r(_area(c)), "length": _r(c.length),
-            "bbox": [_r(v) for v in c.bbox], "segments": len(c.segments),
+def _contour_json(c: Contour, stats) -> Dict[str, Any]:
+    area, length, box = stats
+    return {"id": c.id, "area": _r(area), "length": _r(length),
+            "bbox": [_r(v) for v in box], "segments": len(c.segments),
             "shared": list(c.shared), "layer": c.layer}
+
+
+def _part_json(p: Part) -> Dict[str, Any]:
+    outer = _contour_stats(p.outer)
+    holes = [_contour_stats(h) for h in p.holes]
+    return {
+        "id": p.id, "name": p.name, "size": p.size, "excluded": p.excluded, "quantity": p.quantity,
+        "rotations": p.rotations, "parent": p.parent_id,
+        "net_area": _r(outer[0] - sum(h[0] for h in holes)),
+        "outer_length": _r(outer[1]),
+        "bbox": [_r(v) for v in outer[2]],
+        "outer": _contour_json(p.outer, outer),
+        "holes": [_contour_json(h, st) for h, st in zip(p.holes, holes)],
+        "lead_ins": [{"id": li.id, "contour": li.contour_id, "role": li.role,
+                      "start": _pt(li.start), "end": _pt(li.end), "length": _r(li.length)}
+                     for li in p.lead_ins],
+        "marks": [{"kind": m.kind, "position": _pt(m.position)} for m in p.marks],
+    }
 
 
 def recognition_json(rec: Recognition, path: str) -> Dict[str, Any]:
     """The ``--json`` report of ``leathercut recognise`` (see docs/CLI.md)."""
-    parts = []
-    for p in rec.parts:
-        parts.append({
-            "id": p.id, "name": p.name, "size": p.size, "excluded": p.excluded, "quantity": p.quantity,
-            "rotations": p.rotations, "parent": p.parent_id,
-            "net_area": _r(_area(p.outer) - sum(_area(h) for h in p.holes)),
-            "outer_length": _r(p.outer.length),
-            "bbox": [_r(v) for v in p.outer.bbox],
-            "outer": _contour_json(p.outer),
-            "holes": [_contour_json(h) for h in p.holes],
-            "lead_ins": [{"id": li.id, "contour": li.contour_id, "role": li.role,
-                          "start": _pt(li.start), "end": _pt(li.end), "length": _r(li.length)}
-                         for li in p.lead_ins],
-            "marks": [{"kind": m.kind, "position": _pt(m.position)} for m in p.marks],
-        })
+    with collector_paused():    # a quarter of a million acyclic dicts: no cycle search
+        return _recognition_json(rec, path)
+
+
+def _recognition_json(rec: Recognition, path: str) -> Dict[str, Any]:
+    parts = [_part_json(p) for p in rec.parts]
     return {
         "input": path,
         "units": "mm",

@@ -40,9 +40,12 @@ class Loop:
         self.segs = segs
         self.srcs = srcs
         self.nodes = nodes
-        self.signed_area = signed_path_area(segs)
+        if all(type(s) is LineSeg for s in segs):
+            self.signed_area, self.bbox = _line_area_bbox(segs)
+        else:
+            self.signed_area = signed_path_area(segs)
+            self.bbox = path_bbox(segs)
         self.area = abs(self.signed_area)
-        self.bbox = path_bbox(segs)
         self.face = face
         self._edges = edges_builder
         self.cluster = cluster
@@ -84,7 +87,12 @@ class Loop:
 
     def sample_point(self) -> Point:
         """A point on the loop away from its first vertex (mid of the longest segment)."""
-        seg = max(self.segs, key=lambda s: s.length)
+        segs = self.segs
+        if all(type(s) is LineSeg for s in segs):     # LineSeg.length inline, same floats
+            lengths = [math.hypot(s.end[0] - s.start[0], s.end[1] - s.start[1]) for s in segs]
+            k = lengths.index(max(lengths))           # the first longest, as max(key=)
+            return segs[k].point_at(lengths[k] / 2.0)
+        seg = max(segs, key=lambda s: s.length)
         return seg.point_at(seg.length / 2.0)
 
 
@@ -143,6 +151,20 @@ def simple_loop(graph: Graph, comp: List[int]) -> Loop:
         return out
 
     return Loop(segs, {pieces[i].src for i, _ in order}, nodes, edges)
+
+
+def _line_area_bbox(segs: Sequence[LineSeg]) -> Tuple[float, BBox]:
+    """``signed_path_area`` and ``path_bbox`` of a closed path of lines in one
+    pass (the same operations in the same order: the same floats)."""
+    a = 0.0
+    xs: List[float] = []
+    ys: List[float] = []
+    for s in segs:
+        (x0, y0), (x1, y1) = s.start, s.end
+        a += x0 * y1 - x1 * y0
+        xs += (x0, x1)
+        ys += (y0, y1)
+    return a / 2.0, (min(xs), min(ys), max(xs), max(ys))
 
 
 def path_bbox(segs: Sequence[Segment]) -> BBox:
