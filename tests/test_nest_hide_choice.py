@@ -68,7 +68,7 @@ def test_simplified_hide_outlines_contain_the_parts_and_have_fewer_vertices():
 
     from shapely.geometry import Polygon
 
-    from LeatherCutWorkbench.core.nesting.hide_shapes import simplify_for_hides
+    from LeatherCutWorkbench.core.nesting.hide_shapes import HIDE_SIMPLIFY, simplify_for_hides
     from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
     from LeatherCutWorkbench.core.model import Part
     from nest_shapes import poly_contour
@@ -84,4 +84,39 @@ def test_simplified_hide_outlines_contain_the_parts_and_have_fewer_vertices():
         true, simple = Polygon(v.outer), Polygon(s.outer)
         assert simple.covers(true) and Polygon(s.core).covers(Polygon(v.core))
         assert len(s.outer) < len(v.outer) / 3
-        assert simple.area < 1.015 * true.area
+        # grown by at most HIDE_SIMPLIFY x the part's size all round (mitred corners)
+        d = HIDE_SIMPLIFY * max(v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1])
+        assert simple.area - true.area < 1.1 * d * true.exterior.length
+        assert simple.area < 1.04 * true.area
+
+
+def test_hull_and_pockets_give_the_inner_fit_region_of_the_hide_outline():
+    """On a real Baldacci hide outline (Test8, concave), the inner-fit region
+    of convex part hulls from the hide's hull minus its pockets is the region
+    the plain sweep along the outline gives (to rounding), and its vertices
+    put the part inside the outline."""
+    from shapely.affinity import translate
+    from shapely.geometry import Polygon
+
+    from LeatherCutWorkbench.core.nesting.hide_shapes import HullPockets
+    from LeatherCutWorkbench.core.nesting.nfp import inner_fit
+    from LeatherCutWorkbench.core.nesting.shapes import convex_hull
+
+    inst = read_esicup(os.path.join(DATA, "Test8.json"))
+    ring = [[int(round(10 * x)), int(round(10 * y))] for x, y in inst.hides[0].outline]
+    if Polygon(ring).exterior.is_ccw is False:
+        ring = ring[::-1]
+    hp = HullPockets([ring])
+    assert hp.parts[0][1], "the hide outline is concave: it has pockets"
+    outline = Polygon(ring)
+    for part in inst.parts[:6]:
+        hull = convex_hull([[int(round(10 * x)), int(round(10 * y))]
+                            for x, y in part.outer.points()])
+        fast, slow = hp.ifp(hull), inner_fit(ring, hull)
+        a_fast = sum(Polygon(r).area for r in fast)
+        a_slow = sum(Polygon(r).area for r in slow)
+        assert abs(a_fast - a_slow) <= 1e-3 * a_slow + 1e3
+        for r in fast:
+            for x, y in r[::max(1, len(r) // 8)]:
+                placed = translate(Polygon(hull), x, y)
+                assert placed.difference(outline).area < 1e-4 * placed.area

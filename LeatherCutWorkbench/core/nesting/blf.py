@@ -23,6 +23,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pyclipper
 
+from .hide_shapes import HullPockets
 from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
 
@@ -75,6 +76,7 @@ class Placer:
         self.bin_order: Optional[List[int]] = None
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
+        self._pockets: Dict[tuple, HullPockets] = {}   # (bin region, exact) -> hull and pockets
 
     # ---------------------------------------------------------------- regions
     def _spec_index(self, b: int) -> int:
@@ -109,8 +111,13 @@ class Placer:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
                     # exact: the true ring against the defects, its convex hull against
                     # the hide's outline (a few times faster; a hide is nearly convex)
+                    fits = None
+                    if exact:            # the hull in the hull of the hide, minus its pockets
+                        if fk not in self._pockets:
+                            self._pockets[fk] = HullPockets(outers)
+                        fits = self._pockets[fk].ifp(v.core_hull)
                     hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
-                                     self._ob_forms[fk], v.core_hull if exact else None)
+                                     self._ob_forms[fk], v.core_hull if exact else None, fits)
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(spec, hit, rc, v)
