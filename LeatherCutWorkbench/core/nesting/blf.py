@@ -72,6 +72,9 @@ class Placer:
         self.region_check = region_check
         #: default ``variant_cap`` of :meth:`place` (None: every orientation)
         self.variant_cap: Optional[int] = None
+        #: "x": the candidate with the smallest right edge wins (module doc);
+        #: "y" (hides only: bins are never closed by extent): the lowest top edge
+        self.gravity = "x"
         #: hides: spec index per fill position (None: in the given order)
         self.bin_order: Optional[List[int]] = None
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
@@ -211,6 +214,10 @@ class Placer:
                 if rc.ok(sb, v.type_index, v.angle, v.mirrored, int(pts[k, 0]), int(pts[k, 1])):
                     return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
             return None
+        if self.gravity == "y":           # lowest top edge, then leftmost
+            top = pts[:, 1] + v.bbox[3]
+            k = np.lexsort((pts[:, 0], top))[0]
+            return int(top[k]), int(pts[k, 0]), int(pts[k, 1])
         k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
         return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
 

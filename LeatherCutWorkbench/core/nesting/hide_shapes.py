@@ -13,7 +13,15 @@ not end within a 10 s budget.
 the simplified rings is a valid layout of the true parts (the independent
 checker re-checks the true shapes).  The price is a gap of at most
 2 x ``frac`` x size between parts and ``frac`` x size at the hide's edges.
-Holes (parts in holes of parts) are kept exact.
+Holes (parts in holes of parts) are kept exact.  ``frac`` = 0.2 %: with
+0.08 % an exact first fill of Test2 took 2-3 times longer (more convex
+pieces per NFP) for the same hides.
+
+:class:`HullPockets` computes inner-fit regions of convex part hulls in a
+hide outline from the outline's convex hull minus its pockets (convex sums)
+instead of a sweep along every outline vertex.  (The part's own convex
+pieces against the pockets instead of its hull: exact, but on Test2 twice
+the time of a first fill for one copy more on the five smallest hides.)
 """
 
 from __future__ import annotations
@@ -27,7 +35,7 @@ from shapely.geometry import Polygon
 from .convex import convex_pieces
 from .shapes import IntPath, Variant, convex_hull
 
-#: growth, as a fraction of a variant's larger bounding-box side
+#: growth, as a fraction of a variant's larger bounding-box side (module doc)
 HIDE_SIMPLIFY = 0.002
 
 #: only outlines with more vertices than this are simplified
