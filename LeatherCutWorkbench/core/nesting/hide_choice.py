@@ -66,9 +66,10 @@ def swap_hides(rng: random.Random, order: Sequence[int], placements: Placements,
     Swaps a used hide with an unused one (70 % when there is one), else two
     used hides.  Given ``net_areas`` (per hide) and ``part_areas`` (per
     placement), half of the used-unused swaps put an unused hide of smaller
-    net area in the place of the least-filled hide used: the likeliest swap
-    to keep every copy placed on less material.  Returns the unchanged
-    order and -1 when no swap changes anything."""
+    net area in the place of the least-filled hide used that has a smaller
+    unused one: the likeliest swap to keep every copy placed on less
+    material.  Returns the unchanged order and -1 when no swap changes
+    anything."""
     n = len(order)
     used = used_positions(placements)
     if n < 2 or not used:
@@ -80,9 +81,12 @@ def swap_hides(rng: random.Random, order: Sequence[int], placements: Placements,
         for (_si, b, _vi, _tx, _ty), a in zip(placements, part_areas):
             if b >= 0:
                 on[b] += a
-        least = min(used, key=lambda b: (on[b], b))
-        smaller = [p for p in unused if net_areas[order[p]] < net_areas[order[least]]]
-        if smaller:
+        # the least-filled of the used hides that a smaller unused one could replace
+        smallest = min(net_areas[order[p]] for p in unused)
+        movable = [b for b in used if net_areas[order[b]] > smallest]
+        if movable:
+            least = min(movable, key=lambda b: (on[b], b))
+            smaller = [p for p in unused if net_areas[order[p]] < net_areas[order[least]]]
             new = list(order)
             j = rng.choice(smaller)
             new[least], new[j] = new[j], new[least]
