@@ -101,8 +101,8 @@ class Placer:
             key = (self._spec_index(b) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
-                # out of time: the region of the bounding box (a subset, still valid;
-                # a 4-vertex ring sweeps the hide outline several times faster)
+                # out of time: the coarse region (fewer vertices, convex defects)
+                # and the part's convex hull against the defects too (one convex sum each)
                 exact = self.clock.exact()
                 key = key[:2] + (exact,)
                 hit = self._ifp_cache.get(key)
@@ -112,15 +112,13 @@ class Placer:
                     fk = (key[0], exact or rk not in spec.coarse)
                     if fk not in self._ob_forms:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
-                    # exact: the true ring against the defects, its convex hull against
-                    # the hide's outline (a few times faster; a hide is nearly convex)
-                    fits = None
-                    if exact:            # the hull in the hull of the hide, minus its pockets
-                        if fk not in self._pockets:
-                            self._pockets[fk] = HullPockets(outers)
-                        fits = self._pockets[fk].ifp(v.core_hull)
-                    hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
-                                     self._ob_forms[fk], v.core_hull if exact else None, fits)
+                    # exact: the true ring against the defects; its convex hull in the
+                    # hull of the hide, minus the pockets (a hide is nearly convex)
+                    if fk not in self._pockets:
+                        self._pockets[fk] = HullPockets(outers)
+                    fits = self._pockets[fk].ifp(v.core_hull)
+                    hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
+                                     self._ob_forms[fk], v.core_hull, fits)
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(spec, hit, rc, v)
@@ -289,13 +287,6 @@ class Placer:
                         return None
             states.append(tuple(bs.copy() for bs in bins))
         return Trace(placements, states)
-
-
-def _box(ring: IntPath) -> IntPath:
-    """The bounding rectangle of a ring (CCW)."""
-    xs = [p[0] for p in ring]
-    ys = [p[1] for p in ring]
-    return [[min(xs), min(ys)], [max(xs), min(ys)], [max(xs), max(ys)], [min(xs), max(ys)]]
 
 
 #: Candidate positions tested per variant and bin for a part with graded regions.
