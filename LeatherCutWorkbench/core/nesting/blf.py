@@ -23,6 +23,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pyclipper
 
+from .hide_shapes import HullPockets
 from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
 
@@ -71,10 +72,14 @@ class Placer:
         self.region_check = region_check
         #: default ``variant_cap`` of :meth:`place` (None: every orientation)
         self.variant_cap: Optional[int] = None
+        #: "x": the candidate with the smallest right edge wins (module doc);
+        #: "y" (hides only: bins are never closed by extent): the lowest top edge
+        self.gravity = "x"
         #: hides: spec index per fill position (None: in the given order)
         self.bin_order: Optional[List[int]] = None
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
+        self._pockets: Dict[tuple, HullPockets] = {}   # (bin region, exact) -> hull and pockets
 
     # ---------------------------------------------------------------- regions
     def _spec_index(self, b: int) -> int:
@@ -96,8 +101,8 @@ class Placer:
             key = (self._spec_index(b) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
             if hit is None:
-                # out of time: the region of the bounding box (a subset, still valid;
-                # a 4-vertex ring sweeps the hide outline several times faster)
+                # out of time: the coarse region (fewer vertices, convex defects)
+                # and the part's convex hull against the defects too (one convex sum each)
                 exact = self.clock.exact()
                 key = key[:2] + (exact,)
                 hit = self._ifp_cache.get(key)
@@ -107,10 +112,13 @@ class Placer:
                     fk = (key[0], exact or rk not in spec.coarse)
                     if fk not in self._ob_forms:
                         self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
-                    # exact: the true ring against the defects, its convex hull against
-                    # the hide's outline (a few times faster; a hide is nearly convex)
-                    hit = region_ifp(outers, obstacles, v.core if exact else _box(v.core_hull),
-                                     self._ob_forms[fk], v.core_hull if exact else None)
+                    # exact: the true ring against the defects; its convex hull in the
+                    # hull of the hide, minus the pockets (a hide is nearly convex)
+                    if fk not in self._pockets:
+                        self._pockets[fk] = HullPockets(outers)
+                    fits = self._pockets[fk].ifp(v.core_hull)
+                    hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
+                                     self._ob_forms[fk], v.core_hull, fits)
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(spec, hit, rc, v)
@@ -204,6 +212,10 @@ class Placer:
                 if rc.ok(sb, v.type_index, v.angle, v.mirrored, int(pts[k, 0]), int(pts[k, 1])):
                     return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
             return None
+        if self.gravity == "y":           # lowest top edge, then leftmost
+            top = pts[:, 1] + v.bbox[3]
+            k = np.lexsort((pts[:, 0], top))[0]
+            return int(top[k]), int(pts[k, 0]), int(pts[k, 1])
         k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
         return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
 
@@ -275,13 +287,6 @@ class Placer:
                         return None
             states.append(tuple(bs.copy() for bs in bins))
         return Trace(placements, states)
-
-
-def _box(ring: IntPath) -> IntPath:
-    """The bounding rectangle of a ring (CCW)."""
-    xs = [p[0] for p in ring]
-    ys = [p[1] for p in ring]
-    return [[min(xs), min(ys)], [max(xs), min(ys)], [max(xs), max(ys)], [min(xs), max(ys)]]
 
 
 #: Candidate positions tested per variant and bin for a part with graded regions.

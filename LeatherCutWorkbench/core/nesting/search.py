@@ -83,7 +83,8 @@ def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements,
             hide_order: Optional[Sequence[int]] = None) -> tuple:
     """(area left out, containers used, extent of the last container): lower is
     better, compared in that order.  Hides (``problem.hide_net``): see
-    :func:`hide_choice.hide_cost` (the net area of the hides used comes before
+    :func:`hide_choice.hide_cost` (the net area of the hides used and the
+    part area on the least-filled one come before
     the extent)."""
     unplaced_area = 0.0
     last_bin = -1
@@ -97,7 +98,8 @@ def cost_of(problem: Problem, seq: Sequence[Gene], placements: Placements,
             extent = max(extent, tx + problem.variants[vi].bbox[2])
     if problem.hide_net is not None:
         order = hide_order if hide_order is not None else range(len(problem.hide_net))
-        return hide_cost(placements, order, problem.hide_net, unplaced_area, extent)
+        return hide_cost(placements, order, problem.hide_net, unplaced_area, extent,
+                         [problem.type_area[seq[si][0]] for (si, _b, _v, _x, _y) in placements])
     return (round(unplaced_area, 6), last_bin + 1, extent)
 
 
@@ -149,6 +151,28 @@ def _mutate(rng: random.Random, seq: List[Gene], problem: Problem) -> Tuple[List
         new.insert(j, g)
         return new, lo
     return new, n
+
+
+def _from_least_filled(rng: random.Random, seq: List[Gene], placements: Placements,
+                       problem: Problem) -> Tuple[List[Gene], int]:
+    """Hides: a copy on the least-filled hide moved to a random earlier place
+    in the order (the fill then tries it on the other hides first) -- a step
+    towards emptying that hide.  Returns (order, first changed position), -1
+    when no copy can move."""
+    on: dict = {}
+    for (si, b, _vi, _tx, _ty) in placements:
+        if b >= 0:
+            on.setdefault(b, []).append(si)
+    if len(on) < 2:
+        return seq, -1
+    least = min(on, key=lambda b: (sum(problem.type_area[seq[si][0]] for si in on[b]), b))
+    i = rng.choice(on[least])
+    if i == 0:
+        return seq, -1
+    j = rng.randrange(i)
+    new = list(seq)
+    new.insert(j, new.pop(i))
+    return new, j
 
 
 @dataclass
@@ -258,6 +282,10 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     choose_hides = problem.hide_net is not None and len(problem.hide_net) > 1
     if problem.hide_net is not None:
         placer.bin_order = initial_order(problem.hide_net)
+        # odd workers fill hides bottom-up instead of left to right: Baldacci
+        # Test2's long seat parts pack differently (more copies on the five
+        # smallest hides in a first fill); the best worker wins
+        placer.gravity = "y" if worker % 2 == 1 else "x"
     rng = random.Random(seed * 1000003 + worker)
     best, evals = _first_fills(problem, placer, copies, worker, budget)
     cur_cost, cur_seq, cur_pl = best
@@ -292,10 +320,15 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         budget.check_cancel(evals, best[0])
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
-            new_hides, pos = swap_hides(rng, cur_hides, cur_pl.placements)
+            new_hides, pos = swap_hides(rng, cur_hides, cur_pl.placements, problem.hide_net,
+                                        [problem.type_area[cur_seq[si][0]]
+                                         for (si, _b, _v, _x, _y) in cur_pl.placements])
             if pos >= 0:
                 first = first_affected(cur_pl.placements, pos)
             new_seq = cur_seq
+        if first < 0 and choose_hides and len(copies) > 1 and rng.random() < 0.25:
+            new_hides = cur_hides
+            new_seq, first = _from_least_filled(rng, cur_seq, cur_pl.placements, problem)
         if first < 0:
             if len(copies) < 2:
                 break
