@@ -18,7 +18,7 @@ from LeatherCutWorkbench.post.profiles import load_profile
 from post_helpers import sample_plan
 
 FAST = dict(status_interval=0.05, link_timeout=1.0, greet_timeout=1.5, hold_timeout=2.0,
-            reset_timeout=2.0, command_timeout=3.0)
+            reset_timeout=2.0, command_timeout=3.0, min_poll_interval=0.005)
 
 
 def job_for(name="grblhal_tangential"):

@@ -35,6 +35,7 @@ from ..gcode_reader import strip_line
 from ..profiles import MachineProfile
 from .job import SendJob
 from .journal import Journal
+from .progress import proof_for
 from .protocol import EEPROM_PATTERN, Reply, parse_reply, position
 
 MODES = ("send-response", "char-count")
@@ -125,7 +126,8 @@ class GrblLink:
     def __init__(self, url: str, baud: int = 115200, *, status_interval: float = 0.2,
                  link_timeout: float = 3.0, greet_timeout: float = 5.0,
                  hold_timeout: float = 5.0, reset_timeout: float = 5.0,
-                 command_timeout: float = 10.0, progress: Optional[ProgressFn] = None):
+                 command_timeout: float = 10.0, progress: Optional[ProgressFn] = None,
+                 cut_window: int = 2, min_poll_interval: float = 0.02):
         self.url = url
         self.baud = baud
         self.status_interval = status_interval
@@ -135,6 +137,8 @@ class GrblLink:
         self.reset_timeout = reset_timeout
         self.command_timeout = command_timeout
         self.progress = progress
+        self.cut_window = cut_window                # segments with unproven cuts in flight
+        self.min_poll_interval = min_poll_interval  # s between extra polls (fence, buffer)
         self.info = ControllerInfo()
         self.ser = None
         self._acks: "queue.Queue[Reply]" = queue.Queue()
@@ -157,7 +161,11 @@ class GrblLink:
         self.profile = None                         # lift axis / z_up for the stop check
         self.stop_verified: Dict = {}
         self.max_in_flight = 0                      # bytes the host counted in flight
-        self._poll_times: Deque[float] = deque()    # '?' written, not yet answered
+        self._poll_times: Deque[Tuple[float, int]] = deque()   # '?' written (time, bytes
+                                                    # written then), not yet answered
+        self._written = 0                           # line bytes written to the port
+        self._ack_seq = 0                           # ok/error answers received
+        self._bf_seen = False                       # the reports carry Bf: (RX unread)
         self._status_time = 0.0                     # when the poll of the last report was written
         self._status_rx_time = 0.0                  # when the last report arrived
         self._garbled_seen = 0
@@ -232,6 +240,8 @@ class GrblLink:
         r = parse_reply(line)
         if r.kind in ("ok", "error"):
             r.epoch = self._banners
+            self._ack_seq += 1
+            r.seq = self._ack_seq
             self._acks.put(r)
         elif r.kind == "status":
             if "WCO" in r.fields:
@@ -241,8 +251,15 @@ class GrblLink:
                     pass
             # the report answers the oldest unanswered '?' (reports are never
             # pushed unasked); it describes the controller after that write
-            self._status_time = self._poll_times.popleft() if self._poll_times else 0.0
+            self._status_time, r.written = (self._poll_times.popleft() if self._poll_times
+                                            else (0.0, -1))
             self._poll_times.clear()
+            r.epoch, r.seq = self._banners, self._ack_seq
+            bf = r.fields.get("Bf", "").split(",")
+            if len(bf) == 2 and bf[1].strip().isdigit():
+                # GRBL: available = RX size - unread (or one less): RX - free is an upper bound
+                r.rx_used = max(0, self.info.rx_size - int(bf[1]))
+                self._bf_seen = True
             self._status = r
             self._status_rx_time = time.monotonic()
             self._status_seq += 1
@@ -264,13 +281,15 @@ class GrblLink:
         try:
             with self._wlock:
                 self.ser.write(data)
+                if data.endswith(b"\n"):
+                    self._written += len(data)
         except (serial.SerialException, OSError) as exc:
             self._lost = f"write failed: {exc}"
             raise LinkError(self._lost, source=self.url)
 
     # ------------------------------------------------------------- commands
     def _poll(self) -> None:
-        self._poll_times.append(time.monotonic())
+        self._poll_times.append((time.monotonic(), self._written))
         self._write(b"?")
 
     def status(self, timeout: Optional[float] = None) -> Optional[Reply]:
@@ -436,8 +455,16 @@ class GrblLink:
           in flight is spurious: counted, journaled, discarded -- never more acks
           than lines sent;
         * character counting keeps ``bytes in flight + margin <= RX - 1``, the
-          margin being the longest line, so one spurious ``ok`` between two
-          resynchronisations cannot overflow the receive buffer;
+          margin being the longest line; and, whenever the status reports carry
+          ``Bf:``, no line is written unless ``unread bytes at the last report
+          + bytes written since its poll + line <= RX - 1`` -- a bound no ``ok``
+          enters, so any number of spurious ``ok``s cannot overflow the receive
+          buffer (when it binds, the link polls again, at most every
+          ``min_poll_interval``);
+        * every status report is turned into proof of executed lines
+          (:mod:`.progress`, journaled as ``exec``), and cutting lines of a new
+          segment wait while ``cut_window`` segments have cuts in flight that
+          no report has proven executed;
         * nothing is sent after a ``G4 P0`` sync until its ``ok`` *and* a status
           report received after it shows Idle: then the counters are exactly
           zero (resynchronised) and the journal's ``sync`` record is proof;
@@ -461,6 +488,16 @@ class GrblLink:
         first_unanswered: Optional[float] = None
         repolls = 0
         status_seq = self._status_seq
+        proof = None if check else proof_for(job, self.profile, self.cut_window)
+        w0 = self._written                    # stream bytes start here
+        # an upper bound on the receive buffer's unread bytes that no ok can
+        # fake: (unread at the last report with Bf, bytes written when it was
+        # polled); every line before the stream was answered, so it starts empty
+        rx_known: Optional[Tuple[int, int]] = (0, w0) if self._bf_seen else None
+        want_poll = False                     # a fence or the buffer bound waits for a report
+        proof_wait: Optional[Reply] = None    # a report to take proofs from
+        proof_snap: Optional[Tuple[int, bool]] = None
+        taken_seq = self._ack_seq             # answers taken (in arrival order)
         sync_wait: Optional[int] = None       # sync line sent, waiting for ok + Idle
         sync_ok_at: Optional[float] = None    # when its ok arrived
         idle_mark: Optional[Tuple[float, int]] = None   # (first Idle report time, acks then)
@@ -473,7 +510,10 @@ class GrblLink:
                                 spurious_acks=spurious)
 
         def take(r: Reply) -> Optional[StreamResult]:
-            nonlocal acked, in_buffer, spurious, sync_ok_at
+            nonlocal acked, in_buffer, spurious, sync_ok_at, taken_seq, proof_snap
+            taken_seq = max(taken_seq, r.seq)
+            if proof_wait is not None and r.seq == proof_wait.seq and pending:
+                proof_snap = (acked + (r.kind == "ok"), len(pending) == 1)
             if not pending:
                 spurious += 1
                 if journal is not None:
@@ -481,6 +521,8 @@ class GrblLink:
                 return None
             k, n, _ = pending.popleft()
             in_buffer -= n
+            if r.kind != "ok" and proof is not None:
+                proof.stopped = True          # refused: later reports prove nothing
             if r.kind == "ok":
                 acked += 1
                 if journal is not None and job.index[k] is not None:
@@ -544,6 +586,12 @@ class GrblLink:
                 status_seq = self._status_seq
                 first_unanswered, repolls = None, 0
                 st = self._status
+                if st.epoch == banners and st.rx_used >= 0 and st.written >= 0:
+                    rx_known = (st.rx_used, st.written)
+                if proof is not None and st.epoch == banners:
+                    proof_wait = st           # once the answers before it are taken
+                    # (lines answered, all answered) when the report came
+                    proof_snap = (acked, not pending) if taken_seq == st.seq else None
                 if st.state == "Alarm" and not check:
                     return stop("alarm", "the controller reports Alarm (its ALARM message was "
                                 "not received)", head(), lost=True)
@@ -565,6 +613,11 @@ class GrblLink:
                                     "garbled)", pending[0][0])
                 else:
                     idle_mark = None
+            if proof_wait is not None and taken_seq >= proof_wait.seq and self._alarm is None:
+                done_ok = proof_snap[0] if proof_snap and proof_snap[1] and not spurious \
+                    else None
+                self._take_proof(proof, proof_wait, sent, w0, journal, done_ok)
+                proof_wait = None
             if first_unanswered is not None:
                 waited = now - first_unanswered
                 if waited > self.link_timeout and repolls >= 2:
@@ -584,14 +637,17 @@ class GrblLink:
                     except LinkError:
                         continue
             elif now - last_poll >= self.status_interval or (
-                    sync_ok_at is not None and last_poll < sync_ok_at):
+                    sync_ok_at is not None and last_poll < sync_ok_at) or (
+                    want_poll and now - last_poll >= self.min_poll_interval):
                 try:
                     self._poll()
                 except LinkError:
                     continue
                 last_poll = now
                 first_unanswered = now
-            # send as much as the mode allows
+            # send as much as the mode allows; while a sync is unanswered, poll
+            # often: the Idle report after it proves the item executed
+            want_poll = sync_wait is not None and sync_ok_at is None
             while (sent < total and not self._paused.is_set() and sync_wait is None
                    and self._banners == banners and self._alarm is None):
                 block = job.blocks[sent]
@@ -599,6 +655,13 @@ class GrblLink:
                 single = mode == "send-response" or bool(EEPROM_PATTERN.match(block))
                 if pending and (single or in_buffer + n > budget
                                 or EEPROM_PATTERN.match(job.blocks[pending[-1][0]])):
+                    break
+                if rx_known is not None and \
+                        rx_known[0] + self._written - rx_known[1] + n > self.info.rx_size - 1:
+                    want_poll = True          # oks may be spurious: wait for a report
+                    break
+                if proof is not None and not proof.allows(sent, sent):
+                    want_poll = True          # the cut window is full
                     break
                 try:
                     self._write(block.encode("ascii") + b"\n")
@@ -644,6 +707,19 @@ class GrblLink:
                 safe = self._stop_safely(take)
                 bad.stopped_safely, bad.acked, bad.spurious_acks = safe, acked, spurious
                 return bad
+
+    def _take_proof(self, proof, st: Reply, sent: int, w0: int,
+                    journal: Optional[Journal], answered: Optional[int]) -> None:
+        """Journal what status report ``st`` proves executed (:mod:`.progress`)."""
+        pos = position(st, self._wco)
+        here = dict(zip(self.info.axes, pos)) if pos is not None else None
+        read = None
+        if st.rx_used >= 0 and st.written >= w0:
+            read = st.written - st.rx_used - w0
+        lines = proof.update(here, sent, idle=st.state == "Idle", read_bytes=read,
+                             answered=answered)
+        if lines and journal is not None:
+            journal.proof(lines)
 
     def _report(self, acked: int, total: int, seg: str, check: bool) -> None:
         if self.progress is not None:
