@@ -501,3 +501,20 @@ def test_several_spurious_oks_never_overfill_the_receive_buffer(mode, tmp_path):
     assert emus[0].max_rx <= 127 and emus[0].overflows == 0, emus[0].max_rx
     assert outs[-1].ok and not stray
     assert [i for i in cutting_lines(job) if counts.get(i, 0) != 1] == []
+
+
+def test_the_lines_the_link_makes_pass_the_safety_check_before_the_first_byte(tmp_path):
+    """Issue #16, 3: every line the link streams passes the safety check --
+    the job as sent, and the link's own lines (resume preamble, feeds taken
+    back; every resume in these tests passes it).  A job that leaves the
+    profile's table is refused before anything is streamed (before, a
+    SendSession -- the workbench's path -- streamed it unchecked)."""
+    from LeatherCutWorkbench.core.errors import SafetyError
+    from LeatherCutWorkbench.post.profiles import profile_from_dict
+    profile = profile_for("grblhal")
+    job = make_job(profile, copies=4)                  # parts up to y = 400 + ...
+    small = profile_from_dict({**profile.to_json(), "table_size": [600, 300]})
+    with FakeController(flavour="grblhal", axes="XYZC", homing=True) as emu:
+        with pytest.raises(SafetyError, match="outside the table"):
+            SendSession(job, small, emu.port, str(tmp_path / "j"), **FAST).run()
+        assert [b for b in emu.log if not b.startswith("$")] == []    # nothing streamed

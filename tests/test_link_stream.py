@@ -260,3 +260,20 @@ def test_locate_position_on_lines_and_arcs():
     assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 45.0}, tol) == pytest.approx(0.5)
     assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 10.0}, tol) is None  # wrong knife angle
     assert locate(arc, {"X": 0.0, "Y": 10.0, "Z": 0.0, "C": 45.0}, tol) is None      # off the sweep
+
+
+@pytest.mark.parametrize("report_buffer", [True, False])
+def test_the_link_knows_whether_the_reports_carry_the_buffer_state(report_buffer):
+    """The hard receive-buffer bound needs ``Bf:`` (GRBL ``$10`` bit 1): the
+    link says whether it has it, and streams either way."""
+    from LeatherCutWorkbench.post.link import job_from_program
+    from post_helpers import sample_plan
+    profile = load_profile("grbl11_knife_z_servo")
+    job = job_from_program("j.nc", gcode.build_program(sample_plan(), profile))
+    with FakeController(flavour="grbl", report_buffer=report_buffer) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(profile)
+            info = link.greet()
+            assert info.buffer_reported == report_buffer
+            assert link.stream(job, None, "char-count").status == "done"
+        assert emu.overflows == 0

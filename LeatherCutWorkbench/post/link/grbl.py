@@ -64,6 +64,8 @@ class ControllerInfo:
     axes: str = "XYZ"
     settings: Dict[str, str] = field(default_factory=dict)
     state: str = ""
+    buffer_reported: bool = False  # status reports carry Bf: (GRBL $10 bit 1): the hard
+                                   # receive-buffer bound against spurious oks is on
 
     def to_json(self) -> Dict:
         return dict(self.__dict__)
@@ -338,6 +340,7 @@ class GrblLink:
             raise LinkError(self._lost or f"no controller answers on {self.url} "
                             f"(no status report within {self.greet_timeout:g} s)", source=self.url)
         self.info.state = st.state
+        self.info.buffer_reported = self._bf_seen
         r, push = self.command("$I")
         flavour = "grblhal" if "GrblHAL" in self.info.banner else "grbl"
         axes = ""
@@ -497,6 +500,8 @@ class GrblLink:
         want_poll = False                     # a fence or the buffer bound waits for a report
         proof_wait: Optional[Reply] = None    # a report to take proofs from
         proof_snap: Optional[Tuple[int, bool]] = None
+        fenced = fence_pass = False           # the window held a line back / may pass one
+        fence_idle = 0
         taken_seq = self._ack_seq             # answers taken (in arrival order)
         sync_wait: Optional[int] = None       # sync line sent, waiting for ok + Idle
         sync_ok_at: Optional[float] = None    # when its ok arrived
@@ -588,6 +593,12 @@ class GrblLink:
                 st = self._status
                 if st.epoch == banners and st.rx_used >= 0 and st.written >= 0:
                     rx_known = (st.rx_used, st.written)
+                # a machine Idle twice at a full cut window that no report can
+                # prove (a position on two blocks' paths, no Bf, a spurious ok
+                # seen) may pass one segment: never a hang, only a weaker bound
+                fence_idle = fence_idle + 1 if fenced and st.state == "Idle" else 0
+                if fence_idle >= 3:
+                    fence_pass, fence_idle = True, 0
                 if proof is not None and st.epoch == banners:
                     proof_wait = st           # once the answers before it are taken
                     # (lines answered, all answered) when the report came
@@ -648,6 +659,7 @@ class GrblLink:
             # send as much as the mode allows; while a sync is unanswered, poll
             # often: the Idle report after it proves the item executed
             want_poll = sync_wait is not None and sync_ok_at is None
+            fenced = False
             while (sent < total and not self._paused.is_set() and sync_wait is None
                    and self._banners == banners and self._alarm is None):
                 block = job.blocks[sent]
@@ -661,8 +673,11 @@ class GrblLink:
                     want_poll = True          # oks may be spurious: wait for a report
                     break
                 if proof is not None and not proof.allows(sent, sent):
-                    want_poll = True          # the cut window is full
-                    break
+                    if not fence_pass:
+                        want_poll = fenced = True     # the cut window is full
+                        break
+                    fence_pass = False        # no proof came though the machine waits
+
                 try:
                     self._write(block.encode("ascii") + b"\n")
                 except LinkError:
@@ -712,6 +727,8 @@ class GrblLink:
                     journal: Optional[Journal], answered: Optional[int]) -> None:
         """Journal what status report ``st`` proves executed (:mod:`.progress`)."""
         pos = position(st, self._wco)
+        if "WPos" not in st.fields and self._wco is None:
+            pos = None                 # MPos without the work offset: no position proof
         here = dict(zip(self.info.axes, pos)) if pos is not None else None
         read = None
         if st.rx_used >= 0 and st.written >= w0:

@@ -39,7 +39,11 @@ next one) -- a re-cut is the interrupted segment plus, at most, the segment
 before it, and that only when the boundary was crossed after the last status
 report.  ``window`` 1 (or the profile's ``sync_every_segment``) bounds it to
 the interrupted segment, at the price of the head stopping at every segment
-end.  Faults that keep the position (error, soft-limit alarm, stall,
+end; the window also limits the planner's look-ahead to that many segments,
+which slows chains of very short segments (a curve imported as many short
+lines) -- a larger window, or 0 (no limit: the re-cut is then what was cut
+since the last status report, rounded out to whole segments), trades the
+bound for speed.  Faults that keep the position (error, soft-limit alarm, stall,
 garbled reply) resume exactly from the stop position (:mod:`.recovery`).
 """
 
@@ -67,7 +71,7 @@ class ExecutionProof:
 
     def __init__(self, job, profile, window: int = 2):
         self.job = job
-        self.window = max(1, int(window))
+        self.window = max(0, int(window))     # 0: no limit
         self.proven = 0
         self.stopped = False              # an error was answered: prove nothing more
         self.tol = _tolerances(profile.axes, profile.rotary_axis)
@@ -140,7 +144,7 @@ class ExecutionProof:
         """Whether block ``k`` may be sent: a cutting block of a new segment only
         while fewer than ``window`` segments have cutting lines in flight that
         no report has proven executed."""
-        if not self.cut[k] or not self.job.fence:
+        if not self.cut[k] or not self.job.fence or not self.window:
             return True
         segs = self.job.segs
         open_segs = {segs[j] for j in range(self.proven, sent) if self.cut[j]}
