@@ -23,7 +23,8 @@ double really executed:
   lost, none cut with a wrong work zero);
 * a line executed more than once belongs to the *interrupted segment* of a
   stream that stopped (the segment of the last cutting line that stream
-  executed) -- the documented re-cut.  The one exception, proved impossible
+  executed; after an ``error:N`` also the refused line's segment, as stock
+  GRBL runs on from its buffer) -- the documented re-cut.  The one exception, proved impossible
   to avoid with what GRBL reports (``post/link/progress.py``): with cut
   window 2 and item syncs, after a stop that lost the position, the segment
   just before the interrupted one (the tool crossed into the interrupted
@@ -109,17 +110,22 @@ def check_stop(emu, res, profile):
 
 
 def interrupted_segments(job, streams, outs, cut):
-    """Per stream that stopped: (its interrupted segment -- that of the last
-    cutting line it executed --, whether the stop lost the position)."""
+    """Per stream that stopped: (its interrupted segments -- that of the last
+    cutting line it executed and, after an ``error:N``, that of the refused
+    line (stock GRBL runs on from its buffer) --, whether the stop lost the
+    position)."""
     seg_of = {job.index[k]: job.segs[k] for k in range(len(job.blocks))
               if job.index[k] is not None}
     got = []
     for done, out in zip(streams, outs):
         if out.ok:
-            got.append((None, False))
+            got.append((set(), False))
             continue
         cuts = [i for i in done if i in cut]
-        got.append((seg_of[cuts[-1]] if cuts else None, bool(out.result.position_lost)))
+        segs = {seg_of[cuts[-1]]} if cuts else set()
+        if out.result.status == "error" and out.result.segment:
+            segs.add(out.result.segment)
+        got.append((segs, bool(out.result.position_lost)))
     return got, seg_of
 
 
@@ -162,11 +168,11 @@ def run_case(seed, tmp_path):
     for i in sorted(cut):
         runs = [n for n, done in enumerate(streams) if i in done]
         for n in runs[:-1]:               # every execution but the last is a re-cut
-            seg, pos_lost = stops[n]
-            if seg_of[i] == seg:
+            segs, pos_lost = stops[n]
+            if seg_of[i] in segs:
                 continue                  # the documented re-cut
-            prev = order[order.index(seg) - 1] if seg and order.index(seg) > 0 else None
-            if window == 2 and not segment_sync and pos_lost and seg_of[i] == prev:
+            prev = {order[order.index(s) - 1] for s in segs if order.index(s) > 0}
+            if window == 2 and not segment_sync and pos_lost and seg_of[i] in prev:
                 before.append(i)
             else:
                 beyond.append(i)
