@@ -129,7 +129,7 @@ class GrblLink:
                  link_timeout: float = 3.0, greet_timeout: float = 5.0,
                  hold_timeout: float = 5.0, reset_timeout: float = 5.0,
                  command_timeout: float = 10.0, progress: Optional[ProgressFn] = None,
-                 cut_window: int = 2, min_poll_interval: float = 0.02):
+                 cut_window: int = 2, min_poll_interval: float = 0.05):
         self.url = url
         self.baud = baud
         self.status_interval = status_interval
@@ -463,7 +463,7 @@ class GrblLink:
           + bytes written since its poll + line <= RX - 1`` -- a bound no ``ok``
           enters, so any number of spurious ``ok``s cannot overflow the receive
           buffer (when it binds, the link polls again, at most every
-          ``min_poll_interval``);
+          ``min_poll_interval``, 0.05 s);
         * every status report is turned into proof of executed lines
           (:mod:`.progress`, journaled as ``exec``), and cutting lines of a new
           segment wait while ``cut_window`` segments have cuts in flight that
@@ -656,9 +656,8 @@ class GrblLink:
                     continue
                 last_poll = now
                 first_unanswered = now
-            # send as much as the mode allows; while a sync is unanswered, poll
-            # often: the Idle report after it proves the item executed
-            want_poll = sync_wait is not None and sync_ok_at is None
+            # send as much as the mode allows
+            want_poll = False
             fenced = False
             while (sent < total and not self._paused.is_set() and sync_wait is None
                    and self._banners == banners and self._alarm is None):
