@@ -732,8 +732,10 @@ class GrblLink:
         read = None
         if st.rx_used >= 0 and st.written >= w0:
             read = st.written - st.rx_used - w0
+        # with Bf the read count proves Idle's lines without trusting any ok;
+        # the answered count only stands in for it on controllers without Bf
         lines = proof.update(here, sent, idle=st.state == "Idle", read_bytes=read,
-                             answered=answered)
+                             answered=answered if read is None else None)
         if lines and journal is not None:
             journal.proof(lines)
 

@@ -16,9 +16,9 @@ blocks that were certainly executed by then:
 * **Idle with Bf**: Idle means the planner is empty; every line read out of
   the receive buffer (sent bytes minus unread bytes) was executed, except
   possibly the last one (a dwell or sync may still be running);
-* **Idle, all answered**: with no spurious ``ok`` seen, Idle after every
-  sent line was answered means they were all executed (a dwell still
-  running has no answer yet).
+* **Idle, all answered** (only without ``Bf``): with no spurious ``ok``
+  seen, Idle after every sent line was answered means they were all
+  executed (a dwell still running has no answer yet).
 
 Proofs are journaled (``exec`` records) and :mod:`.recovery` counts them as
 executed after a stop that lost the position (power loss, disconnect), so a
