@@ -501,7 +501,7 @@ class GrblLink:
         proof_wait: Optional[Reply] = None    # a report to take proofs from
         proof_snap: Optional[Tuple[int, bool]] = None
         fenced = fence_pass = False           # the window held a line back / may pass one
-        fence_idle = 0
+        fence_idle = (0.0, 0)                 # (since when Idle at a full window, proven then)
         taken_seq = self._ack_seq             # answers taken (in arrival order)
         sync_wait: Optional[int] = None       # sync line sent, waiting for ok + Idle
         sync_ok_at: Optional[float] = None    # when its ok arrived
@@ -593,12 +593,15 @@ class GrblLink:
                 st = self._status
                 if st.epoch == banners and st.rx_used >= 0 and st.written >= 0:
                     rx_known = (st.rx_used, st.written)
-                # a machine Idle twice at a full cut window that no report can
-                # prove (a position on two blocks' paths, no Bf, a spurious ok
-                # seen) may pass one segment: never a hang, only a weaker bound
-                fence_idle = fence_idle + 1 if fenced and st.state == "Idle" else 0
-                if fence_idle >= 3:
-                    fence_pass, fence_idle = True, 0
+                # a machine Idle for half a second at a full cut window that no
+                # report can prove (a position on two blocks' paths, no Bf, a
+                # spurious ok seen) may pass one segment: never a hang, only a
+                # weaker bound (journaled as "window")
+                if not (fenced and st.state == "Idle") or (
+                        proof is not None and proof.proven != fence_idle[1]):
+                    fence_idle = (now, proof.proven if proof is not None else 0)
+                elif now - fence_idle[0] >= max(0.5, 2 * self.status_interval):
+                    fence_pass = True
                 if proof is not None and st.epoch == banners:
                     proof_wait = st           # once the answers before it are taken
                     # (lines answered, all answered) when the report came
@@ -676,6 +679,10 @@ class GrblLink:
                         want_poll = fenced = True     # the cut window is full
                         break
                     fence_pass = False        # no proof came though the machine waits
+                    fence_idle = (now, proof.proven)
+                    if journal is not None:
+                        journal.event("window", i=job.index[sent], seg=job.segs[sent],
+                                      proven=proof.proven)
 
                 try:
                     self._write(block.encode("ascii") + b"\n")
