@@ -60,6 +60,8 @@ SEEDS = list(range(int(os.environ.get("LEATHERCUT_FAULT_RUNS", str(2 * len(KINDS
 SUMMARY = {"runs": 0, "streams": 0, "faults fired": 0, "lines lost": 0, "lines repeated": 0,
            "repeated beyond the interrupted segment": 0,
            "repeated in the segment before it (window 2, position lost)": 0,
+           "repeated after the last status report (window 0, position lost)": 0,
+           "buffer resyncs": 0, "streams gone strict": 0,
            "misplaced": 0, "overflows": 0, "stopped safely": 0, "kinds": {}}
 
 
@@ -133,7 +135,7 @@ def run_case(seed, tmp_path):
     rnd = random.Random(seed)
     flavour = rnd.choice(["grbl", "grblhal"])
     segment_sync = rnd.random() < 0.5
-    window = rnd.choice([1, 2])
+    window = rnd.choice([0, 1, 2])
     profile = profile_for(flavour, segment_sync)
     job = make_job(profile)
     kind = KINDS[seed % len(KINDS)]
@@ -147,12 +149,12 @@ def run_case(seed, tmp_path):
     emu = FakeController(flavour=flavour, axes=axes, homing=profile.homing,
                          planner_blocks=planner, block_time=0.002, split=split,
                          faults=faults).start()
-    stopped, streams = [], []
+    stopped, streams, unproven = [], [], []
     power_lost = kind in ("disconnect_power",) or (kind == "sync_lost_disconnect"
                                                    and rnd.random() < 0.5)
     counts, outs, emus, stray_all = send_until_done(
         emu, job, profile, jpath, mode, power_lost=power_lost, streams=streams,
-        link_options={"cut_window": window},
+        link_options={"cut_window": window}, unproven=unproven,
         on_stop=lambda e, out: stopped.append(check_stop(e, out.result, profile)))
     if not outs[-1].ok and outs[-1].resume_from is not None:
         pytest.fail(f"seed {seed} ({kind}): not done after 3 resumes")
@@ -164,7 +166,7 @@ def run_case(seed, tmp_path):
     lost = sorted(i for i in cut if counts.get(i, 0) == 0)
     stops, seg_of = interrupted_segments(job, streams, outs, cut)
     order = job.segment_ids
-    beyond, before = [], []
+    beyond, before, after = [], [], []
     for i in sorted(cut):
         runs = [n for n, done in enumerate(streams) if i in done]
         for n in runs[:-1]:               # every execution but the last is a re-cut
@@ -174,6 +176,8 @@ def run_case(seed, tmp_path):
             prev = {order[order.index(s) - 1] for s in segs if order.index(s) > 0}
             if window == 2 and not segment_sync and pos_lost and seg_of[i] in prev:
                 before.append(i)
+            elif window == 0 and pos_lost and i in unproven[n]:
+                after.append(i)           # executed after the last status report
             else:
                 beyond.append(i)
     where = f"seed {seed}: {kind} at line {line} ({[(f.kind, f.at_line) for f in faults]}), " \
@@ -191,6 +195,9 @@ def run_case(seed, tmp_path):
     SUMMARY["lines repeated"] += sum(counts[i] - 1 for i in cut if counts.get(i, 0) > 1)
     SUMMARY["repeated beyond the interrupted segment"] += len(beyond)
     SUMMARY["repeated in the segment before it (window 2, position lost)"] += len(before)
+    SUMMARY["repeated after the last status report (window 0, position lost)"] += len(after)
+    SUMMARY["buffer resyncs"] += sum(o.result.buffer_resyncs for o in outs if o.result)
+    SUMMARY["streams gone strict"] += sum(1 for o in outs if o.result and o.result.strict_buffer)
     key = f"max bytes in flight ({flavour}, RX {emus[0].rx_size})"
     SUMMARY[key] = max(SUMMARY.get(key, 0), rx_max)
     SUMMARY["kinds"][kind] = SUMMARY["kinds"].get(kind, 0) + 1

@@ -489,18 +489,27 @@ def test_a_swallowed_item_sync_ok_repeats_at_most_the_interrupted_segment(
 def test_several_spurious_oks_never_overfill_the_receive_buffer(mode, tmp_path):
     """Issue #16, 6 (closing note): the margin covered one spurious ``ok``
     between resynchronisations; several in one item overfilled GRBL's 127
-    bytes.  The status reports' ``Bf:`` bound no ``ok`` enters keeps the
-    controller's buffer within RX - 1 whatever number arrive."""
+    bytes.  Every status report's ``Bf:`` is compared with the count: the
+    first report after a spurious ``ok`` shows more unread bytes than counted,
+    the excess is counted in flight again and the stream keeps the strict
+    bound (no ``ok`` enters it) from then on -- so the later ones, even
+    several on one line, cannot overfill it.  (A burst inside one report
+    interval before any is detected is the documented limit, docs/LINK.md.)"""
     profile = profile_for("grbl")
     job = make_job(profile, copies=1)
     at = line_in(job, "3:5", 2)
-    spurious = [Fault("spurious", a) for a in (at, at, at + 1, at + 1, at + 2, at + 3, at + 5)]
+    lines = (at - 30, at, at, at + 1, at + 1, at + 2, at + 3, at + 5)
+    spurious = [Fault("spurious", a) for a in lines]
     emu = FakeController(flavour="grbl", axes="XYZ", line_time=0.003, faults=spurious).start()
-    counts, outs, emus, stray = send_until_done(emu, job, profile, str(tmp_path / "j"), mode)
+    jpath = str(tmp_path / "j")
+    counts, outs, emus, stray = send_until_done(emu, job, profile, jpath, mode)
     assert all(f.fired for f in spurious)
     assert emus[0].max_rx <= 127 and emus[0].overflows == 0, emus[0].max_rx
     assert outs[-1].ok and not stray
     assert [i for i in cutting_lines(job) if counts.get(i, 0) != 1] == []
+    assert outs[0].result.strict_buffer              # detected: strict from then on
+    with open(jpath) as f:
+        assert '"strict"' in f.read()
 
 
 def test_the_lines_the_link_makes_pass_the_safety_check_before_the_first_byte(tmp_path):

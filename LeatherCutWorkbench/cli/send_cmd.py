@@ -53,12 +53,13 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                         "lost link, ALARM:1/3) on a machine that does not home: you have set "
                         "the work zero again at the machine")
     g.add_argument("--cut-window", dest="send_cut_window", type=int, choices=range(0, 9),
-                   default=2, metavar="N",
+                   default=0, metavar="N",
                    help="segments whose cutting lines may be in flight before a status "
-                        "report proves them executed (default 2: after a power loss the "
-                        "re-cut is the interrupted segment and at most the one before it; "
-                        "1: only the interrupted segment, the head stops at every segment end; "
-                        "0: no limit, the most look-ahead)")
+                        "report proves them executed (default 0: no limit, full look-ahead; "
+                        "after a power loss the re-cut is the interrupted segment plus at "
+                        "most what was cut since the last status report; 2: at most the "
+                        "segment before it too; 1: only the interrupted segment, the head "
+                        "stops at every segment end)")
     g.add_argument("--allow-unsealed", dest="send_allow_unsealed", action="store_true",
                    help="stream a hand-written G-code file that has no LeatherCut end marker "
                         "(never a truncated LeatherCut job)")

@@ -63,7 +63,9 @@ replay canned bytes, without a receive buffer, planner or realtime commands).
 in order.  ``results`` holds, for every G-code line it processed, a list
 ``[session, block, reply, executed]`` where ``session`` counts resets,
 ``reply`` is ``ok``, ``error:N`` or ``ALARM:N`` and ``executed`` tells
-whether the machine really made the move.
+whether the machine really made the move.  ``exec_log`` holds those
+entries in the order they were executed and ``report_marks`` how many had
+been executed when each status report was made (what a report could prove).
 """
 
 from __future__ import annotations
@@ -125,6 +127,9 @@ class FakeController:
     offset: dict = field(default_factory=dict)
     misplaced: int = 0
     max_rx: int = 0
+    exec_log: List[list] = field(default_factory=list)    # results entries, as executed
+    report_marks: List[tuple] = field(default_factory=list)   # (session, len(exec_log))
+                                                          # when each status report was made
 
     def __post_init__(self) -> None:
         if not self.rx_size:
@@ -349,6 +354,7 @@ class FakeController:
         while self._queue and time.monotonic() >= self._next_exec:
             entry, block, end = self._queue.pop(0)
             entry[3] = True
+            self.exec_log.append(entry)
             self.executed.append(block)
             self._placed(block)
             self._mpos = end
@@ -404,6 +410,7 @@ class FakeController:
             if self._drop_status:
                 self._drop_status -= 1       # line noise ate this poll
                 return
+            self.report_marks.append((self.session, len(self.exec_log)))
             self._send(self._status())
         elif b == ord("!"):
             self._frozen_until = 0.0
@@ -564,6 +571,7 @@ class FakeController:
             entry = [self.session, block, "ok", not (self.planner_blocks and motion)]
             self.results.append(entry)
             if entry[3]:
+                self.exec_log.append(entry)
                 self.executed.append(block)
                 self._placed(block)
                 self._mpos = dict(self._interp.pos)

@@ -90,6 +90,8 @@ class StreamResult:
                                       # ALARM:1/3: a resume must home or confirm the zero
     verified: Dict = field(default_factory=dict)  # what status reports showed after the stop
     spurious_acks: int = 0            # answers with no line in flight (discarded)
+    buffer_resyncs: int = 0           # reports whose Bf showed more unread bytes than counted
+    strict_buffer: bool = False       # a spurious ok was seen: the Bf bound was on since
 
     @property
     def ok(self) -> bool:
@@ -129,7 +131,7 @@ class GrblLink:
                  link_timeout: float = 3.0, greet_timeout: float = 5.0,
                  hold_timeout: float = 5.0, reset_timeout: float = 5.0,
                  command_timeout: float = 10.0, progress: Optional[ProgressFn] = None,
-                 cut_window: int = 2, min_poll_interval: float = 0.05):
+                 cut_window: int = 0, min_poll_interval: float = 0.05):
         self.url = url
         self.baud = baud
         self.status_interval = status_interval
@@ -257,6 +259,7 @@ class GrblLink:
                                             else (0.0, -1))
             self._poll_times.clear()
             r.epoch, r.seq = self._banners, self._ack_seq
+            r.written_rx = self._written      # an upper bound: a write in progress counts
             bf = r.fields.get("Bf", "").split(",")
             if len(bf) == 2 and bf[1].strip().isdigit():
                 # GRBL: available = RX size - unread (or one less): RX - free is an upper bound
@@ -282,9 +285,9 @@ class GrblLink:
             raise LinkError(self._lost, source=self.url)
         try:
             with self._wlock:
-                self.ser.write(data)
                 if data.endswith(b"\n"):
-                    self._written += len(data)
+                    self._written += len(data)    # before: the reader's bound includes it
+                self.ser.write(data)
         except (serial.SerialException, OSError) as exc:
             self._lost = f"write failed: {exc}"
             raise LinkError(self._lost, source=self.url)
@@ -458,12 +461,18 @@ class GrblLink:
           in flight is spurious: counted, journaled, discarded -- never more acks
           than lines sent;
         * character counting keeps ``bytes in flight + margin <= RX - 1``, the
-          margin being the longest line; and, whenever the status reports carry
-          ``Bf:``, no line is written unless ``unread bytes at the last report
-          + bytes written since its poll + line <= RX - 1`` -- a bound no ``ok``
-          enters, so any number of spurious ``ok``s cannot overflow the receive
-          buffer (when it binds, the link polls again, at most every
-          ``min_poll_interval``, 0.05 s);
+          margin being the longest line (one spurious ``ok`` fits in it); and,
+          whenever a status report carries ``Bf:``, its unread bytes are
+          compared with what the count believed in flight when it was made
+          (bytes written by its arrival - bytes of the lines answered before
+          it): more unread than that proves spurious oks were counted --
+          the excess is counted in flight again and, from then on, the stream
+          also keeps the strict bound ``unread bytes at the last report +
+          bytes written since its poll + line <= RX - 1``, which no ``ok``
+          enters (when it binds, the link polls again, at most every
+          ``min_poll_interval``, 0.05 s).  Journaled as ``resync``.  The
+          strict bound is never on before a spurious ``ok`` is seen: it
+          starves the planner on short lines (docs/LINK.md, "Buffer");
         * every status report is turned into proof of executed lines
           (:mod:`.progress`, journaled as ``exec``), and cutting lines of a new
           segment wait while ``cut_window`` segments have cuts in flight that
@@ -497,6 +506,11 @@ class GrblLink:
         # fake: (unread at the last report with Bf, bytes written when it was
         # polled); every line before the stream was answered, so it starts empty
         rx_known: Optional[Tuple[int, int]] = (0, w0) if self._bf_seen else None
+        strict = False                        # a spurious ok was seen: rx_known binds
+        resyncs = 0
+        answered_bytes = 0                    # bytes of the lines answered so far
+        answered_at: Deque[Tuple[int, int]] = deque([(self._ack_seq, 0)], maxlen=256)
+        resync_wait: Optional[Reply] = None   # a Bf report to check the count against
         want_poll = False                     # a fence or the buffer bound waits for a report
         proof_wait: Optional[Reply] = None    # a report to take proofs from
         proof_snap: Optional[Tuple[int, bool]] = None
@@ -512,20 +526,26 @@ class GrblLink:
             line = job.index[k] + 1 if k is not None and job.index[k] is not None else None
             return StreamResult(status, acked, total, line, job.blocks[k] if k is not None else "",
                                 message, job.segs[k] if k is not None else "", safe,
-                                spurious_acks=spurious)
+                                spurious_acks=spurious, buffer_resyncs=resyncs,
+                                strict_buffer=strict)
 
         def take(r: Reply) -> Optional[StreamResult]:
             nonlocal acked, in_buffer, spurious, sync_ok_at, taken_seq, proof_snap
+            nonlocal answered_bytes
             taken_seq = max(taken_seq, r.seq)
             if proof_wait is not None and r.seq == proof_wait.seq and pending:
                 proof_snap = (acked + (r.kind == "ok"), len(pending) == 1)
             if not pending:
                 spurious += 1
+                answered_at.append((r.seq, answered_bytes))
+                go_strict("an answer with no line in flight")
                 if journal is not None:
                     journal.event("spurious", reply=r.raw, acked=acked)
                 return None
             k, n, _ = pending.popleft()
-            in_buffer -= n
+            answered_bytes += n
+            answered_at.append((r.seq, answered_bytes))
+            in_buffer = in_buffer - n if pending else 0
             if r.kind != "ok" and proof is not None:
                 proof.stopped = True          # refused: later reports prove nothing
             if r.kind == "ok":
@@ -537,6 +557,34 @@ class GrblLink:
                 self._report(acked, total, job.segs[k], check)
                 return None
             return result("error", k, f"{r.raw}: {r.text}")
+
+        def go_strict(why: str) -> None:
+            """A spurious ok was seen: with Bf, the strict bound binds from now on."""
+            nonlocal strict
+            if rx_known is not None and not strict:
+                strict = True
+                if journal is not None:
+                    journal.event("strict", why=why, acked=acked)
+
+        def resync(st: Reply) -> None:
+            """Compare report ``st``'s unread bytes with the count (all answers
+            before it taken): more unread than counted in flight = spurious oks
+            were counted; count the excess in flight again, go strict."""
+            nonlocal in_buffer, resyncs
+            done = next((b for q, b in reversed(answered_at) if q <= st.seq), None)
+            if done is None:
+                return                        # too old to compare (256 answers since)
+            believed = st.written_rx - w0 - done
+            # Bf's free count is RX - 1 - unread on GRBL (RX - unread elsewhere):
+            # rx_used - 1 never exceeds the true unread bytes
+            excess = st.rx_used - 1 - believed
+            if excess > 0 and pending:
+                resyncs += 1
+                in_buffer += excess
+                if journal is not None:
+                    journal.event("resync", unread=st.rx_used - 1, counted=believed,
+                                  acked=acked)
+                go_strict(f"status report: {st.rx_used - 1} bytes unread, {believed} counted")
 
         def take_received() -> None:
             """Journal the answers that arrived before the reset or the loss of
@@ -551,6 +599,15 @@ class GrblLink:
                 if r.epoch == banners:
                     take(r)
 
+        def last_proof() -> None:
+            """Before giving up on a reset or a lost link: what the last report
+            of this controller session proves (it may have arrived with the
+            banner, before the loop took it)."""
+            st = self._status
+            if proof is not None and st is not None and st.epoch == banners \
+                    and st.seq <= taken_seq:
+                self._take_proof(proof, st, sent, w0, journal, None)
+
         def head() -> Optional[int]:
             return pending[0][0] if pending else (sent - 1 if sent else None)
 
@@ -564,6 +621,7 @@ class GrblLink:
             now = time.monotonic()
             if self._lost:
                 take_received()
+                last_proof()
                 res = result("lost", head(), f"link lost: {self._lost}; job state unknown")
                 res.position_lost = True
                 return res
@@ -573,6 +631,7 @@ class GrblLink:
                             lost=a.code in (1, 3))
             if self._banners != banners:
                 take_received()
+                last_proof()
                 k = head()
                 safe = self._after_reset(spontaneous=True)
                 res = result("reset", k, "the controller reset itself (banner received): lines "
@@ -593,6 +652,8 @@ class GrblLink:
                 st = self._status
                 if st.epoch == banners and st.rx_used >= 0 and st.written >= 0:
                     rx_known = (st.rx_used, st.written)
+                    if st.written_rx >= w0:
+                        resync_wait = st
                 # a machine Idle for half a second at a full cut window that no
                 # report can prove (a position on two blocks' paths, no Bf, a
                 # spurious ok seen) may pass one segment: never a hang, only a
@@ -627,6 +688,9 @@ class GrblLink:
                                     "garbled)", pending[0][0])
                 else:
                     idle_mark = None
+            if resync_wait is not None and taken_seq >= resync_wait.seq:
+                resync(resync_wait)
+                resync_wait = None
             if proof_wait is not None and taken_seq >= proof_wait.seq and self._alarm is None:
                 done_ok = proof_snap[0] if proof_snap and proof_snap[1] and not spurious \
                     else None
@@ -670,7 +734,7 @@ class GrblLink:
                 if pending and (single or in_buffer + n > budget
                                 or EEPROM_PATTERN.match(job.blocks[pending[-1][0]])):
                     break
-                if rx_known is not None and \
+                if strict and \
                         rx_known[0] + self._written - rx_known[1] + n > self.info.rx_size - 1:
                     want_poll = True          # oks may be spurious: wait for a report
                     break

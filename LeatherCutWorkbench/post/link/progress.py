@@ -31,19 +31,21 @@ first line must already be in the planner.  If the power fails after the
 crossing and before the next status report, the host has seen exactly what
 it would have seen had the power failed just before the crossing: no report,
 acknowledgement or journal record tells the two apart.  A lossless resume
-must then cut the tail of the earlier segment again.  So with continuous
-cutting the re-cut after a power loss is bounded by the *cut window*: the
-link never has cutting lines of more than ``window`` segments in flight that
-no report has proven executed (default 2: the segment being cut and the
-next one) -- a re-cut is the interrupted segment plus, at most, the segment
-before it, and that only when the boundary was crossed after the last status
-report.  ``window`` 1 (or the profile's ``sync_every_segment``) bounds it to
-the interrupted segment, at the price of the head stopping at every segment
-end; the window also limits the planner's look-ahead to that many segments,
-which slows chains of very short segments (a curve imported as many short
-lines) -- a larger window, or 0 (no limit: the re-cut is then what was cut
-since the last status report, rounded out to whole segments), trades the
-bound for speed.  Faults that keep the position (error, soft-limit alarm, stall,
+must then cut the tail of the earlier segment again.  By default (``window``
+0, no limit) the re-cut after a power loss is the interrupted segment plus
+what was executed since the last status report (about ``status_interval`` of
+motion), rounded out to whole segments, and the planner keeps its full
+look-ahead.  The *cut window* bounds it structurally instead: with
+``window`` N the link never has cutting lines of more than N segments in
+flight that no report has proven executed -- with 2 a re-cut is the
+interrupted segment plus, at most, the segment before it, and that only when
+the boundary was crossed after the last status report; 1 (or the profile's
+``sync_every_segment``) bounds it to the interrupted segment, at the price of
+the head stopping at every segment end.  A window also limits the planner's
+look-ahead to that many segments, which starves chains of very short
+segments (a curve imported as many short lines): window 2 made a job of 5 ms
+lines up to 2.3 times slower (docs/BENCHMARKS.md), hence the default 0.
+Faults that keep the position (error, soft-limit alarm, stall,
 garbled reply) resume exactly from the stop position (:mod:`.recovery`).
 """
 
@@ -69,7 +71,7 @@ class ExecutionProof:
     lower position in the stream) and the cut window.  Positions are work
     coordinates (mm / axis units) keyed by axis letter."""
 
-    def __init__(self, job, profile, window: int = 2):
+    def __init__(self, job, profile, window: int = 0):
         self.job = job
         self.window = max(0, int(window))     # 0: no limit
         self.proven = 0

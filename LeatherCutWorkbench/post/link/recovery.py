@@ -22,11 +22,13 @@ module decides what was executed, with the best evidence the journal holds:
    after that ``ok`` shows the controller ``Idle`` (a spurious or early ``ok``
    cannot fake it); every acknowledged line up to the last verified sync was
    executed.  The resume then starts at the first segment with a cutting line
-   not proven executed: with the link's cut window (two segments) that is the
-   interrupted segment or, when the power failed after the tool crossed into
-   the next segment and before a report showed it, the one before it (why
-   no report can tell these apart: :mod:`.progress`); with the profile's
-   ``sync_every_segment`` (or cut window 1) only the interrupted segment.
+   not proven executed: the interrupted segment or, when the power failed
+   after the tool crossed segment ends and before a report showed it, an
+   earlier one -- without a cut window (the default) the re-cut is what was
+   executed since the last status report, with cut window 2 at most the
+   segment before the interrupted one (why no report can tell these apart:
+   :mod:`.progress`); with the profile's ``sync_every_segment`` (or cut
+   window 1) only the interrupted segment.
 
 Lines a controller refused (``error:N``) are never acknowledged and so never
 executed: their segment is cut again even when later segments were executed.
