@@ -113,10 +113,14 @@ def _resume_loop(emus, outs, stray_all, counts, job, profile, jpath, mode, power
 
 def after_last_report(emu, mark, session, sent):
     """Job line indices of a stream (as in :func:`stream_outcome`) that the
-    machine executed after the last status report it made in the stream's
-    controller session: what no report could prove executed."""
+    machine executed after the last status report it made before the
+    stream's last executed line (reports after the stop prove nothing the
+    stream used): what no report of the stream could prove executed."""
     mine = [r for r in emu.results[mark:] if r[0] == session][:len(sent.blocks)]
     where = {id(r): sent.index[k] for k, r in enumerate(mine) if sent.index[k] is not None}
-    marks = [n for s, n in emu.report_marks if s == session]
+    at = [n for n, e in enumerate(emu.exec_log) if id(e) in where]
+    if not at:
+        return set()
+    marks = [n for s, n in emu.report_marks if s == session and n <= at[-1]]
     last = marks[-1] if marks else 0
     return {where[id(e)] for e in emu.exec_log[last:] if id(e) in where}
