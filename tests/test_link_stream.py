@@ -277,3 +277,32 @@ def test_the_link_knows_whether_the_reports_carry_the_buffer_state(report_buffer
             assert info.buffer_reported == report_buffer
             assert link.stream(job, None, "char-count").status == "done"
         assert emu.overflows == 0
+
+
+def test_without_a_spurious_ok_the_count_runs_on_the_oks_not_on_the_reports(tmp_path):
+    """The lead's benchmark (5 ms lines): a bound that ignores every ``ok``
+    until the next status report starved the planner -- GRBL's 128 bytes
+    drain faster than reports come.  With genuine ``ok``s the count trusts
+    them: far more than RX - 1 bytes go out between two polls, the ``Bf:``
+    resync never fires (no false spurious-ok alarm), the buffer never
+    overflows.  (Failed before: at most RX - 1 bytes per report.)"""
+    from LeatherCutWorkbench.post.link import job_from_program
+    from post_helpers import sample_plan
+    profile = load_profile("grbl11_knife_z_servo")
+    job = job_from_program("j.nc", gcode.build_program(sample_plan(), profile))
+    with FakeController(flavour="grbl", planner_blocks=15, block_time=0.002) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(profile)
+            assert link.greet().buffer_reported
+            at_poll = []
+            real = link._poll
+
+            def counted():
+                at_poll.append(link._written)
+                real()
+            link._poll = counted
+            res = link.stream(job, Journal.open(str(tmp_path / "j"), job, "char-count"),
+                              "char-count")
+    assert res.status == "done" and emu.overflows == 0 and emu.max_rx <= 127
+    assert res.buffer_resyncs == 0 and not res.strict_buffer
+    assert max(b - a for a, b in zip(at_poll, at_poll[1:])) > 127

@@ -140,8 +140,12 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
         # of the last acknowledged move (the controller ran on to the end of its
         # buffer; anywhere else it was moved since, e.g. jogged)
         last = max(motion) if motion else None
+        # the lines a status report proved executed are behind the tool (or it
+        # is at the end of the last one): the position is looked for from
+        # there (a closed contour's start point is also where it ends)
+        behind = -1 if end.get("reconnect") else max(run.get("proofs", ()), default=-1)
         for i in sorted(motion):
-            if i <= last_sync or (end.get("reconnect") and i != last):
+            if i <= last_sync or i < behind or (end.get("reconnect") and i != last):
                 continue
             for k, mv in enumerate(motion[i]):
                 t = locate(mv, pos, tol)
