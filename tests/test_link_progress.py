@@ -73,3 +73,19 @@ def test_the_cut_window_holds_the_first_cut_of_a_third_segment():
     assert p0.allows(5, 5)                      # no window
     job.fence = False                           # foreign G-code: no window either
     assert ExecutionProof(job, load_profile("grbl11_knife_z_servo"), 1).allows(5, 5)
+
+
+def test_a_clean_stop_on_a_closed_contour_is_located_after_the_proven_lines():
+    """A closed contour ends where it started: a stop position at its end also
+    lies on its first line.  Looked for from the first acknowledged line, the
+    tool was placed at the contour's start and the last line was cut again
+    (found with cut window 0 in the fault runs); the lines a status report
+    proved executed are behind the tool, so the search starts there."""
+    from LeatherCutWorkbench.post.link.recovery import _tolerances, executed_in_run
+    source = ["G21 G90", "G0 X0 Y0 Z0", "G1 X10 Y0 F1000", "G1 X10 Y10", "G1 X0 Y10",
+              "G1 X0 Y0", "G1 X20 Y0"]
+    run = {"acked": list(range(7)), "syncs": [], "proofs": [0, 1, 2, 3, 4],
+           "end": {"e": "garbled", "position": {"X": 0.0, "Y": 0.0, "Z": 0.0},
+                   "position_trusted": True}}
+    done, basis = executed_in_run(run, source, "XYZ", "", 360.0, _tolerances("XYZ", ""))
+    assert basis == "position" and done == {0, 1, 2, 3, 4, 5}      # line 6 not yet
