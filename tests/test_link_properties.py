@@ -12,7 +12,7 @@ cycle, or a disconnect with or without a power loss); replies arrive whole
 or byte by byte (split reads).  Then it resumes with ``--resume-from auto``
 through :class:`SendSession` (the code ``leathercut send`` runs) until the
 job is done, re-zeroing at the machine and confirming it when the position
-was lost on a machine that does not home.  Cut window 1 or 2 (the link's
+was lost on a machine that does not home.  Cut window 0, 1 or 2 (the link's
 ``cut_window``), item or segment syncs, both modes, both firmwares, with and
 without a planner, are drawn at random.
 
@@ -24,14 +24,20 @@ double really executed:
 * a line executed more than once belongs to the *interrupted segment* of a
   stream that stopped (the segment of the last cutting line that stream
   executed; after an ``error:N`` also the refused line's segment, as stock
-  GRBL runs on from its buffer) -- the documented re-cut.  The one exception, proved impossible
-  to avoid with what GRBL reports (``post/link/progress.py``): with cut
-  window 2 and item syncs, after a stop that lost the position, the segment
-  just before the interrupted one (the tool crossed into the interrupted
-  segment after the last status report).  Those lines are counted apart;
-  with cut window 1 or segment syncs there must be none;
+  GRBL runs on from its buffer) -- the documented re-cut.  The exceptions,
+  proved impossible to avoid with what GRBL reports
+  (``post/link/progress.py``), counted apart: with cut window 2 and item
+  syncs, after a stop that lost the position, the segment just before the
+  interrupted one (the tool crossed into it after the last status report);
+  with no cut window (0, the default), lines the double executed after the
+  last status report it made before the stream's last executed line
+  (``link_helpers.after_last_report``) -- nothing else; with cut window 1 or
+  segment syncs there must be none;
 * the controller's receive buffer never held more than RX - 1 bytes (never
-  overflowed), whatever number of spurious ``ok``\\ s arrived;
+  overflowed), with 2-6 spurious ``ok``\\ s (the count resynchronises at
+  every ``Bf:`` report and then goes strict; a burst inside one report
+  interval before the first is detected is the documented limit, measured
+  here: "overflows");
 * whenever the report says "stopped safely" the controller really is Idle
   with the knife up and the spindle off.
 

@@ -243,6 +243,7 @@ class GrblLink:
     def _handle(self, line: str) -> None:
         r = parse_reply(line)
         if r.kind in ("ok", "error"):
+            r.at = time.monotonic()
             r.epoch = self._banners
             self._ack_seq += 1
             r.seq = self._ack_seq
@@ -535,10 +536,14 @@ class GrblLink:
             taken_seq = max(taken_seq, r.seq)
             if proof_wait is not None and r.seq == proof_wait.seq and pending:
                 proof_snap = (acked + (r.kind == "ok"), len(pending) == 1)
-            if not pending:
+            early = bool(pending) and 0.0 < r.at < pending[0][2]
+            if not pending or early:
+                # no line in flight, or the answer arrived before the oldest
+                # line in flight was written: it answers none of them
                 spurious += 1
                 answered_at.append((r.seq, answered_bytes))
-                go_strict("an answer with no line in flight")
+                go_strict("an answer before its line was written" if early
+                          else "an answer with no line in flight")
                 if journal is not None:
                     journal.event("spurious", reply=r.raw, acked=acked)
                 return None
@@ -748,11 +753,12 @@ class GrblLink:
                         journal.event("window", i=job.index[sent], seg=job.segs[sent],
                                       proven=proof.proven)
 
+                begun = time.monotonic()      # an answer that arrived before answers another
                 try:
                     self._write(block.encode("ascii") + b"\n")
                 except LinkError:
                     break
-                pending.append((sent, n, time.monotonic()))
+                pending.append((sent, n, begun))
                 in_buffer += n
                 self.max_in_flight = max(self.max_in_flight, in_buffer)
                 if _SYNC.match(block):
