@@ -10,7 +10,7 @@ from post_helpers import sample_plan
 
 # link_timeout: not so short that a loaded 2-core test machine looks like a lost link
 FAST = dict(status_interval=0.03, link_timeout=1.0, greet_timeout=3.0, hold_timeout=1.0,
-            reset_timeout=1.0, command_timeout=3.0)
+            reset_timeout=1.0, command_timeout=3.0, min_poll_interval=0.005)
 
 
 def profile_for(flavour, segment_sync=False):
@@ -52,16 +52,19 @@ def stream_outcome(emu, mark, session, sent):
 
 
 def send_until_done(emu, job, profile, jpath, mode, power_lost=False, max_resumes=3,
-                    on_stop=None):
+                    on_stop=None, streams=None, link_options=None, unproven=None):
     """A fresh send, then ``--resume-from auto`` until the job is done, the
     operator reconnecting (after a lost port: ``emu.reconnect(power_lost)``),
     unlocking and re-zeroing at a machine that does not home (and confirming
     it).  Returns (executed count per job line, outcomes, every emulator,
-    stray moves); every emulator is closed at the end."""
+    stray moves); every emulator is closed at the end.  ``streams`` (a list)
+    collects, per stream, the job lines it executed in order; ``link_options``
+    go to the link (e.g. ``cut_window``); ``unproven`` (a list) collects, per
+    stream, :func:`after_last_report`."""
     emus, outs, stray_all, counts = [emu], [], [], {}
     try:
         _resume_loop(emus, outs, stray_all, counts, job, profile, jpath, mode, power_lost,
-                     max_resumes, on_stop)
+                     max_resumes, on_stop, streams, link_options or {}, unproven)
     finally:
         for e in emus:
             e.close()
@@ -69,13 +72,13 @@ def send_until_done(emu, job, profile, jpath, mode, power_lost=False, max_resume
 
 
 def _resume_loop(emus, outs, stray_all, counts, job, profile, jpath, mode, power_lost,
-                 max_resumes, on_stop):
+                 max_resumes, on_stop, streams, link_options, unproven=None):
     emu = emus[0]
     resume, confirm = None, False
     for _ in range(max_resumes + 1):
         mark, session = len(emu.results), emu.session
         s = SendSession(job, profile, emu.port, jpath, mode=mode, resume_from=resume,
-                        confirm_work_zero=confirm, **FAST)
+                        confirm_work_zero=confirm, **{**FAST, **link_options})
         try:
             out = s.run()
         except Exception as exc:
@@ -85,6 +88,10 @@ def _resume_loop(emus, outs, stray_all, counts, job, profile, jpath, mode, power
         outs.append(out)
         done, stray = stream_outcome(emu, mark, session, s.streamed)
         stray_all += stray
+        if streams is not None:
+            streams.append(done)
+        if unproven is not None:
+            unproven.append(after_last_report(emu, mark, session, s.streamed))
         for i in done:
             counts[i] = counts.get(i, 0) + 1
         if on_stop is not None:
@@ -102,3 +109,18 @@ def _resume_loop(emus, outs, stray_all, counts, job, profile, jpath, mode, power
                 emu.rezero()             # the operator sets the work zero again
                 confirm = True
         resume = "auto"
+
+
+def after_last_report(emu, mark, session, sent):
+    """Job line indices of a stream (as in :func:`stream_outcome`) that the
+    machine executed after the last status report it made before the
+    stream's last executed line (reports after the stop prove nothing the
+    stream used): what no report of the stream could prove executed."""
+    mine = [r for r in emu.results[mark:] if r[0] == session][:len(sent.blocks)]
+    where = {id(r): sent.index[k] for k, r in enumerate(mine) if sent.index[k] is not None}
+    at = [n for n, e in enumerate(emu.exec_log) if id(e) in where]
+    if not at:
+        return set()
+    marks = [n for s, n in emu.report_marks if s == session and n <= at[-1]]
+    last = marks[-1] if marks else 0
+    return {where[id(e)] for e in emu.exec_log[last:] if id(e) in where}

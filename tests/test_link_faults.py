@@ -21,7 +21,7 @@ from post_helpers import sample_plan
 
 # short, but not so short that a loaded test machine looks like a lost link
 FAST = dict(status_interval=0.05, link_timeout=1.0, greet_timeout=3.0, hold_timeout=2.0,
-            reset_timeout=2.0, command_timeout=3.0)
+            reset_timeout=2.0, command_timeout=3.0, min_poll_interval=0.005)
 
 
 def make_job(profile):

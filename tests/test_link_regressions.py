@@ -438,3 +438,92 @@ def test_tool_location_mid_move_from_the_reported_position(tmp_path):
     st = load_journal(p)
     assert st.tool_at() == {"line": 4, "block": "G1 X10 Y10", "segment": "1:1", "how": "on"}
     assert st.first_incomplete() == "1:1"
+
+
+# ------------------------------------------- swallowed sync ok, several spurious oks
+
+def segments_of(job, lines):
+    return {job.segs[job.index.index(i)] for i in lines}
+
+
+@pytest.mark.parametrize("flavour,mode,window,then", [
+    ("grbl", "char-count", 1, "reset"), ("grblhal", "send-response", 1, "reset"),
+    ("grbl", "send-response", 2, "reset"), ("grblhal", "char-count", 2, "reset"),
+    ("grbl", "char-count", 1, "disconnect-power"), ("grblhal", "char-count", 2, "disconnect"),
+])
+def test_a_swallowed_item_sync_ok_repeats_at_most_the_interrupted_segment(
+        flavour, mode, window, then, tmp_path):
+    """Issue #16, 7: when an item's sync ``ok`` is lost and the power fails (on
+    the same port, or with the cable), the resume re-cut the whole item from
+    the last verified sync (up to 105 lines).  The status reports received
+    while streaming prove what was executed: the re-cut is the interrupted
+    segment -- with cut window 2 at most the segment before it too (when
+    the tool crossed into the last segment after the last report)."""
+    profile = profile_for(flavour)
+    job = make_job(profile, copies=1)
+    last3 = max(k for k, s in enumerate(job.segs) if s.startswith("3:"))
+    sync = job.blocks.index("G4P0", last3) + 1          # item 3's sync, after the lift
+    follow = (Fault("reset", sync, after=0.02) if then == "reset"
+              else Fault("disconnect", sync, after=0.02))
+    emu = FakeController(flavour=flavour, axes="XYZ" if flavour == "grbl" else "XYZC",
+                         homing=profile.homing, planner_blocks=6, block_time=0.002,
+                         faults=[Fault("drop_ack", sync), follow]).start()
+    streams = []
+    counts, outs, emus, stray = send_until_done(
+        emu, job, profile, str(tmp_path / "j"), mode, power_lost=then != "disconnect",
+        streams=streams, link_options={"cut_window": window})
+    assert outs[0].result.status in ("reset", "lost") and outs[-1].ok and not stray
+    cut = cutting_lines(job)
+    assert [i for i in cut if not counts.get(i)] == []
+    repeated = [i for i in cut if counts.get(i, 0) > 1]
+    last_cut = [i for i in streams[0] if i in cut][-1]
+    interrupted = job.segs[job.index.index(last_cut)]
+    order = job.segment_ids
+    allowed = {interrupted} if window == 1 else {interrupted,
+                                                 order[order.index(interrupted) - 1]}
+    assert segments_of(job, repeated) <= allowed, (segments_of(job, repeated), interrupted)
+    assert sum(e.misplaced for e in emus) == 0
+
+
+@pytest.mark.parametrize("mode", ["char-count", "send-response"])
+def test_several_spurious_oks_never_overfill_the_receive_buffer(mode, tmp_path):
+    """Issue #16, 6 (closing note): the margin covered one spurious ``ok``
+    between resynchronisations; several in one item overfilled GRBL's 127
+    bytes.  Every status report's ``Bf:`` is compared with the count: the
+    first report after a spurious ``ok`` shows more unread bytes than counted,
+    the excess is counted in flight again and the stream keeps the strict
+    bound (no ``ok`` enters it) from then on -- so the later ones, even
+    several on one line, cannot overfill it.  (A burst inside one report
+    interval before any is detected is the documented limit, docs/LINK.md.)"""
+    profile = profile_for("grbl")
+    job = make_job(profile, copies=1)
+    at = line_in(job, "3:5", 2)
+    lines = (at - 30, at, at, at + 1, at + 1, at + 2, at + 3, at + 5)
+    spurious = [Fault("spurious", a) for a in lines]
+    emu = FakeController(flavour="grbl", axes="XYZ", line_time=0.003, faults=spurious).start()
+    jpath = str(tmp_path / "j")
+    counts, outs, emus, stray = send_until_done(emu, job, profile, jpath, mode)
+    assert all(f.fired for f in spurious)
+    assert emus[0].max_rx <= 127 and emus[0].overflows == 0, emus[0].max_rx
+    assert outs[-1].ok and not stray
+    assert [i for i in cutting_lines(job) if counts.get(i, 0) != 1] == []
+    assert outs[0].result.strict_buffer              # detected: strict from then on
+    with open(jpath) as f:
+        assert '"strict"' in f.read()
+
+
+def test_the_lines_the_link_makes_pass_the_safety_check_before_the_first_byte(tmp_path):
+    """Issue #16, 3: every line the link streams passes the safety check --
+    the job as sent, and the link's own lines (resume preamble, feeds taken
+    back; every resume in these tests passes it).  A job that leaves the
+    profile's table is refused before anything is streamed (before, a
+    SendSession -- the workbench's path -- streamed it unchecked)."""
+    from LeatherCutWorkbench.core.errors import SafetyError
+    from LeatherCutWorkbench.post.profiles import profile_from_dict
+    profile = profile_for("grblhal")
+    job = make_job(profile, copies=4)                  # parts up to y = 400 + ...
+    small = profile_from_dict({**profile.to_json(), "table_size": [600, 300]})
+    with FakeController(flavour="grblhal", axes="XYZC", homing=True) as emu:
+        with pytest.raises(SafetyError, match="outside the table"):
+            SendSession(job, small, emu.port, str(tmp_path / "j"), **FAST).run()
+        assert [b for b in emu.log if not b.startswith("$")] == []    # nothing streamed

@@ -18,7 +18,7 @@ from LeatherCutWorkbench.post.profiles import load_profile
 from post_helpers import sample_plan
 
 FAST = dict(status_interval=0.05, link_timeout=1.0, greet_timeout=1.5, hold_timeout=2.0,
-            reset_timeout=2.0, command_timeout=3.0)
+            reset_timeout=2.0, command_timeout=3.0, min_poll_interval=0.005)
 
 
 def job_for(name="grblhal_tangential"):
@@ -260,3 +260,49 @@ def test_locate_position_on_lines_and_arcs():
     assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 45.0}, tol) == pytest.approx(0.5)
     assert locate(arc, {"X": mid[0], "Y": mid[1], "Z": 0.0, "C": 10.0}, tol) is None  # wrong knife angle
     assert locate(arc, {"X": 0.0, "Y": 10.0, "Z": 0.0, "C": 45.0}, tol) is None      # off the sweep
+
+
+@pytest.mark.parametrize("report_buffer", [True, False])
+def test_the_link_knows_whether_the_reports_carry_the_buffer_state(report_buffer):
+    """The hard receive-buffer bound needs ``Bf:`` (GRBL ``$10`` bit 1): the
+    link says whether it has it, and streams either way."""
+    from LeatherCutWorkbench.post.link import job_from_program
+    from post_helpers import sample_plan
+    profile = load_profile("grbl11_knife_z_servo")
+    job = job_from_program("j.nc", gcode.build_program(sample_plan(), profile))
+    with FakeController(flavour="grbl", report_buffer=report_buffer) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(profile)
+            info = link.greet()
+            assert info.buffer_reported == report_buffer
+            assert link.stream(job, None, "char-count").status == "done"
+        assert emu.overflows == 0
+
+
+def test_without_a_spurious_ok_the_count_runs_on_the_oks_not_on_the_reports(tmp_path):
+    """The lead's benchmark (5 ms lines): a bound that ignores every ``ok``
+    until the next status report starved the planner -- GRBL's 128 bytes
+    drain faster than reports come.  With genuine ``ok``s the count trusts
+    them: far more than RX - 1 bytes go out between two polls, the ``Bf:``
+    resync never fires (no false spurious-ok alarm), the buffer never
+    overflows.  (Failed before: at most RX - 1 bytes per report.)"""
+    from LeatherCutWorkbench.post.link import job_from_program
+    from post_helpers import sample_plan
+    profile = load_profile("grbl11_knife_z_servo")
+    job = job_from_program("j.nc", gcode.build_program(sample_plan(), profile))
+    with FakeController(flavour="grbl", planner_blocks=15, block_time=0.002) as emu:
+        with GrblLink(emu.port, **FAST) as link:
+            link.use_profile(profile)
+            assert link.greet().buffer_reported
+            at_poll = []
+            real = link._poll
+
+            def counted():
+                at_poll.append(link._written)
+                real()
+            link._poll = counted
+            res = link.stream(job, Journal.open(str(tmp_path / "j"), job, "char-count"),
+                              "char-count")
+    assert res.status == "done" and emu.overflows == 0 and emu.max_rx <= 127
+    assert res.buffer_resyncs == 0 and not res.strict_buffer
+    assert max(b - a for a, b in zip(at_poll, at_poll[1:])) > 127

@@ -52,6 +52,14 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
                    help="resume after a stop that lost the machine position (power or reset, "
                         "lost link, ALARM:1/3) on a machine that does not home: you have set "
                         "the work zero again at the machine")
+    g.add_argument("--cut-window", dest="send_cut_window", type=int, choices=range(0, 9),
+                   default=0, metavar="N",
+                   help="segments whose cutting lines may be in flight before a status "
+                        "report proves them executed (default 0: no limit, full look-ahead; "
+                        "after a power loss the re-cut is the interrupted segment plus at "
+                        "most what was cut since the last status report; 2: at most the "
+                        "segment before it too; 1: only the interrupted segment, the head "
+                        "stops at every segment end)")
     g.add_argument("--allow-unsealed", dest="send_allow_unsealed", action="store_true",
                    help="stream a hand-written G-code file that has no LeatherCut end marker "
                         "(never a truncated LeatherCut job)")
@@ -145,7 +153,8 @@ def run(args: argparse.Namespace) -> Report:
                           home=not args.send_no_home, resume_from=args.send_resume,
                           baud=args.send_baud, progress=progress,
                           confirm_work_zero=args.send_confirm_zero,
-                          link_timeout=args.send_link_timeout)
+                          link_timeout=args.send_link_timeout,
+                          cut_window=args.send_cut_window)
     old_int = signal.signal(signal.SIGINT, lambda *a: session.abort())
     old_usr = None
     if hasattr(signal, "SIGUSR1"):
@@ -192,6 +201,8 @@ def run(args: argparse.Namespace) -> Report:
             f"{res.stop_summary()}{lost} Journal {jpath}; resume with --resume-from "
             f"{out.resume_from}"
             + (" (from where the controller reported the tool stopped)." if out.basis == "position"
+               else " (from the last point the status reports proved executed; the interrupted "
+                    "segment may be cut again)." if out.basis == "status"
                else " (from the last point verified executed; part of the item being cut may "
                     "be cut again)."))
     return Report(data=data, text=text, exit_code=1)

@@ -12,7 +12,10 @@ see (facts: docs in /work/shared/notes/machine.md, GRBL 1.1h and grblHAL):
   lines are executed by the project's G-code interpreter (so a ``C`` word on a
   3-axis GRBL is ``error:20`` and a bad arc ``error:33``); longer than 80
   bytes -> ``error:11``; in Alarm every G-code line -> ``error:9``;
-* realtime bytes bypass the buffer: ``?`` status ``<Idle|MPos:..|FS:..>``,
+* realtime bytes bypass the buffer: ``?`` status ``<Idle|MPos:..|Bf:..|FS:..>``
+  (``Bf:`` planner blocks and receive-buffer bytes free, left out with
+  ``report_buffer=False`` like stock GRBL's ``$10=1``; ``WCO:`` in the first
+  report and every tenth, as GRBL),
   ``!`` feed hold (``Hold:0``), ``~`` resume, ``0x18`` soft reset (flushes
   the buffer, ``ALARM:3`` if motion was queued, then the banner);
 * ``$I`` ``$$`` ``$G`` ``$C`` (check mode; leaving it resets) ``$X`` ``$H``;
@@ -60,7 +63,9 @@ replay canned bytes, without a receive buffer, planner or realtime commands).
 in order.  ``results`` holds, for every G-code line it processed, a list
 ``[session, block, reply, executed]`` where ``session`` counts resets,
 ``reply`` is ``ok``, ``error:N`` or ``ALARM:N`` and ``executed`` tells
-whether the machine really made the move.
+whether the machine really made the move.  ``exec_log`` holds those
+entries in the order they were executed and ``report_marks`` how many had
+been executed when each status report was made (what a report could prove).
 """
 
 from __future__ import annotations
@@ -118,9 +123,13 @@ class FakeController:
     split: bool = False                   # write replies byte by byte
     boot_time: float = 0.05               # s after a power cycle before the banner
     settings: dict = field(default_factory=dict)   # extra $$ settings, e.g. {"701": "1"}
+    report_buffer: bool = True            # Bf: in status reports (GRBL $10 bit 1)
     offset: dict = field(default_factory=dict)
     misplaced: int = 0
     max_rx: int = 0
+    exec_log: List[list] = field(default_factory=list)    # results entries, as executed
+    report_marks: List[tuple] = field(default_factory=list)   # (session, len(exec_log))
+                                                          # when each status report was made
 
     def __post_init__(self) -> None:
         if not self.rx_size:
@@ -147,6 +156,7 @@ class FakeController:
         self._boot_until = 0.0
         self._disconnect_at = 0.0
         self._drop_status = 0
+        self._wco_count = 0                 # status reports since the last WCO field
         self.offset = {a: float(self.offset.get(a, 0.0)) for a in self.axes}
         self._thread = threading.Thread(target=self._run, name="fake-grbl", daemon=True)
 
@@ -344,6 +354,7 @@ class FakeController:
         while self._queue and time.monotonic() >= self._next_exec:
             entry, block, end = self._queue.pop(0)
             entry[3] = True
+            self.exec_log.append(entry)
             self.executed.append(block)
             self._placed(block)
             self._mpos = end
@@ -399,6 +410,7 @@ class FakeController:
             if self._drop_status:
                 self._drop_status -= 1       # line noise ate this poll
                 return
+            self.report_marks.append((self.session, len(self.exec_log)))
             self._send(self._status())
         elif b == ord("!"):
             self._frozen_until = 0.0
@@ -421,10 +433,16 @@ class FakeController:
             state = "Check"
         feed = self._interp.state.feed or 0
         free = (self.planner_blocks or 15) - len(self._queue)
-        return f"<{state}|MPos:{mpos}|Bf:{free},{self.rx_size - len(self._rx)}|FS:{feed:g},0>"
+        # like GRBL: the work offset now and then (first report after a start),
+        # always 0 here (the position counters are the work coordinates)
+        wco = "|WCO:" + ",".join("0.000" for _ in self.axes) if not self._wco_count else ""
+        self._wco_count = (self._wco_count + 1) % 10
+        bf = f"|Bf:{free},{self.rx_size - len(self._rx)}" if self.report_buffer else ""
+        return f"<{state}|MPos:{mpos}{bf}|FS:{feed:g},0{wco}>"
 
     def _reset(self, moving: bool, power_cycle: bool = False) -> None:
         self.session += 1
+        self._wco_count = 0
         self._frozen_until = 0.0
         self._rx.clear()
         self._latched = None
@@ -553,6 +571,7 @@ class FakeController:
             entry = [self.session, block, "ok", not (self.planner_blocks and motion)]
             self.results.append(entry)
             if entry[3]:
+                self.exec_log.append(entry)
                 self.executed.append(block)
                 self._placed(block)
                 self._mpos = dict(self._interp.pos)

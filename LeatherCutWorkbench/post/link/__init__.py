@@ -3,7 +3,8 @@
 * :mod:`.protocol` -- reply parsing and the error/alarm texts,
 * :mod:`.job`      -- what is streamed (lines, segments) and resume programs,
 * :mod:`.journal`  -- the append-only record of acknowledged lines,
-* :mod:`.grbl`     -- :class:`GrblLink`: greet, identify, stream, stop safely.
+* :mod:`.grbl`     -- :class:`GrblLink`: greet, identify, stream, stop safely,
+* :mod:`.progress` -- what status reports prove executed; the cut window.
 
 See docs/LINK.md.
 """

@@ -36,7 +36,7 @@ def linear_feed_only(job: SendJob, profile: MachineProfile) -> Tuple[SendJob, in
         except GcodeError:
             moves_of[n] = []
     out = SendJob(job.name, job.source, list(job.blocks), list(job.segs), list(job.index),
-                  job.segment_ids, job.job_segs)
+                  job.segment_ids, job.job_segs, job.fence)
     changed = 0
     for k, block in enumerate(out.blocks):
         m = _F.search(block)

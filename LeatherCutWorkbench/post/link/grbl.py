@@ -35,6 +35,7 @@ from ..gcode_reader import strip_line
 from ..profiles import MachineProfile
 from .job import SendJob
 from .journal import Journal
+from .progress import proof_for
 from .protocol import EEPROM_PATTERN, Reply, parse_reply, position
 
 MODES = ("send-response", "char-count")
@@ -63,6 +64,8 @@ class ControllerInfo:
     axes: str = "XYZ"
     settings: Dict[str, str] = field(default_factory=dict)
     state: str = ""
+    buffer_reported: bool = False  # status reports carry Bf: (GRBL $10 bit 1): the hard
+                                   # receive-buffer bound against spurious oks is on
 
     def to_json(self) -> Dict:
         return dict(self.__dict__)
@@ -87,6 +90,8 @@ class StreamResult:
                                       # ALARM:1/3: a resume must home or confirm the zero
     verified: Dict = field(default_factory=dict)  # what status reports showed after the stop
     spurious_acks: int = 0            # answers with no line in flight (discarded)
+    buffer_resyncs: int = 0           # reports whose Bf showed more unread bytes than counted
+    strict_buffer: bool = False       # a spurious ok was seen: the Bf bound was on since
 
     @property
     def ok(self) -> bool:
@@ -125,7 +130,8 @@ class GrblLink:
     def __init__(self, url: str, baud: int = 115200, *, status_interval: float = 0.2,
                  link_timeout: float = 3.0, greet_timeout: float = 5.0,
                  hold_timeout: float = 5.0, reset_timeout: float = 5.0,
-                 command_timeout: float = 10.0, progress: Optional[ProgressFn] = None):
+                 command_timeout: float = 10.0, progress: Optional[ProgressFn] = None,
+                 cut_window: int = 0, min_poll_interval: float = 0.05):
         self.url = url
         self.baud = baud
         self.status_interval = status_interval
@@ -135,6 +141,8 @@ class GrblLink:
         self.reset_timeout = reset_timeout
         self.command_timeout = command_timeout
         self.progress = progress
+        self.cut_window = cut_window                # segments with unproven cuts in flight
+        self.min_poll_interval = min_poll_interval  # s between extra polls (fence, buffer)
         self.info = ControllerInfo()
         self.ser = None
         self._acks: "queue.Queue[Reply]" = queue.Queue()
@@ -157,7 +165,11 @@ class GrblLink:
         self.profile = None                         # lift axis / z_up for the stop check
         self.stop_verified: Dict = {}
         self.max_in_flight = 0                      # bytes the host counted in flight
-        self._poll_times: Deque[float] = deque()    # '?' written, not yet answered
+        self._poll_times: Deque[Tuple[float, int]] = deque()   # '?' written (time, bytes
+                                                    # written then), not yet answered
+        self._written = 0                           # line bytes written to the port
+        self._ack_seq = 0                           # ok/error answers received
+        self._bf_seen = False                       # the reports carry Bf: (RX unread)
         self._status_time = 0.0                     # when the poll of the last report was written
         self._status_rx_time = 0.0                  # when the last report arrived
         self._garbled_seen = 0
@@ -231,7 +243,10 @@ class GrblLink:
     def _handle(self, line: str) -> None:
         r = parse_reply(line)
         if r.kind in ("ok", "error"):
+            r.at = time.monotonic()
             r.epoch = self._banners
+            self._ack_seq += 1
+            r.seq = self._ack_seq
             self._acks.put(r)
         elif r.kind == "status":
             if "WCO" in r.fields:
@@ -241,8 +256,16 @@ class GrblLink:
                     pass
             # the report answers the oldest unanswered '?' (reports are never
             # pushed unasked); it describes the controller after that write
-            self._status_time = self._poll_times.popleft() if self._poll_times else 0.0
+            self._status_time, r.written = (self._poll_times.popleft() if self._poll_times
+                                            else (0.0, -1))
             self._poll_times.clear()
+            r.epoch, r.seq = self._banners, self._ack_seq
+            r.written_rx = self._written      # an upper bound: a write in progress counts
+            bf = r.fields.get("Bf", "").split(",")
+            if len(bf) == 2 and bf[1].strip().isdigit():
+                # GRBL: available = RX size - unread (or one less): RX - free is an upper bound
+                r.rx_used = max(0, self.info.rx_size - int(bf[1]))
+                self._bf_seen = True
             self._status = r
             self._status_rx_time = time.monotonic()
             self._status_seq += 1
@@ -263,6 +286,8 @@ class GrblLink:
             raise LinkError(self._lost, source=self.url)
         try:
             with self._wlock:
+                if data.endswith(b"\n"):
+                    self._written += len(data)    # before: the reader's bound includes it
                 self.ser.write(data)
         except (serial.SerialException, OSError) as exc:
             self._lost = f"write failed: {exc}"
@@ -270,7 +295,7 @@ class GrblLink:
 
     # ------------------------------------------------------------- commands
     def _poll(self) -> None:
-        self._poll_times.append(time.monotonic())
+        self._poll_times.append((time.monotonic(), self._written))
         self._write(b"?")
 
     def status(self, timeout: Optional[float] = None) -> Optional[Reply]:
@@ -319,6 +344,7 @@ class GrblLink:
             raise LinkError(self._lost or f"no controller answers on {self.url} "
                             f"(no status report within {self.greet_timeout:g} s)", source=self.url)
         self.info.state = st.state
+        self.info.buffer_reported = self._bf_seen
         r, push = self.command("$I")
         flavour = "grblhal" if "GrblHAL" in self.info.banner else "grbl"
         axes = ""
@@ -436,8 +462,22 @@ class GrblLink:
           in flight is spurious: counted, journaled, discarded -- never more acks
           than lines sent;
         * character counting keeps ``bytes in flight + margin <= RX - 1``, the
-          margin being the longest line, so one spurious ``ok`` between two
-          resynchronisations cannot overflow the receive buffer;
+          margin being the longest line (one spurious ``ok`` fits in it); and,
+          whenever a status report carries ``Bf:``, its unread bytes are
+          compared with what the count believed in flight when it was made
+          (bytes written by its arrival - bytes of the lines answered before
+          it): more unread than that proves spurious oks were counted --
+          the excess is counted in flight again and, from then on, the stream
+          also keeps the strict bound ``unread bytes at the last report +
+          bytes written since its poll + line <= RX - 1``, which no ``ok``
+          enters (when it binds, the link polls again, at most every
+          ``min_poll_interval``, 0.05 s).  Journaled as ``resync``.  The
+          strict bound is never on before a spurious ``ok`` is seen: it
+          starves the planner on short lines (docs/LINK.md, "Buffer");
+        * every status report is turned into proof of executed lines
+          (:mod:`.progress`, journaled as ``exec``), and cutting lines of a new
+          segment wait while ``cut_window`` segments have cuts in flight that
+          no report has proven executed;
         * nothing is sent after a ``G4 P0`` sync until its ``ok`` *and* a status
           report received after it shows Idle: then the counters are exactly
           zero (resynchronised) and the journal's ``sync`` record is proof;
@@ -461,6 +501,23 @@ class GrblLink:
         first_unanswered: Optional[float] = None
         repolls = 0
         status_seq = self._status_seq
+        proof = None if check else proof_for(job, self.profile, self.cut_window)
+        w0 = self._written                    # stream bytes start here
+        # an upper bound on the receive buffer's unread bytes that no ok can
+        # fake: (unread at the last report with Bf, bytes written when it was
+        # polled); every line before the stream was answered, so it starts empty
+        rx_known: Optional[Tuple[int, int]] = (0, w0) if self._bf_seen else None
+        strict = False                        # a spurious ok was seen: rx_known binds
+        resyncs = 0
+        answered_bytes = 0                    # bytes of the lines answered so far
+        answered_at: Deque[Tuple[int, int]] = deque([(self._ack_seq, 0)], maxlen=256)
+        resync_wait: Optional[Reply] = None   # a Bf report to check the count against
+        want_poll = False                     # a fence or the buffer bound waits for a report
+        proof_wait: Optional[Reply] = None    # a report to take proofs from
+        proof_snap: Optional[Tuple[int, bool]] = None
+        fenced = fence_pass = False           # the window held a line back / may pass one
+        fence_idle = (0.0, 0)                 # (since when Idle at a full window, proven then)
+        taken_seq = self._ack_seq             # answers taken (in arrival order)
         sync_wait: Optional[int] = None       # sync line sent, waiting for ok + Idle
         sync_ok_at: Optional[float] = None    # when its ok arrived
         idle_mark: Optional[Tuple[float, int]] = None   # (first Idle report time, acks then)
@@ -470,17 +527,32 @@ class GrblLink:
             line = job.index[k] + 1 if k is not None and job.index[k] is not None else None
             return StreamResult(status, acked, total, line, job.blocks[k] if k is not None else "",
                                 message, job.segs[k] if k is not None else "", safe,
-                                spurious_acks=spurious)
+                                spurious_acks=spurious, buffer_resyncs=resyncs,
+                                strict_buffer=strict)
 
         def take(r: Reply) -> Optional[StreamResult]:
-            nonlocal acked, in_buffer, spurious, sync_ok_at
-            if not pending:
+            nonlocal acked, in_buffer, spurious, sync_ok_at, taken_seq, proof_snap
+            nonlocal answered_bytes
+            taken_seq = max(taken_seq, r.seq)
+            if proof_wait is not None and r.seq == proof_wait.seq and pending:
+                proof_snap = (acked + (r.kind == "ok"), len(pending) == 1)
+            early = bool(pending) and 0.0 < r.at < pending[0][2]
+            if not pending or early:
+                # no line in flight, or the answer arrived before the oldest
+                # line in flight was written: it answers none of them
                 spurious += 1
+                answered_at.append((r.seq, answered_bytes))
+                go_strict("an answer before its line was written" if early
+                          else "an answer with no line in flight")
                 if journal is not None:
                     journal.event("spurious", reply=r.raw, acked=acked)
                 return None
             k, n, _ = pending.popleft()
-            in_buffer -= n
+            answered_bytes += n
+            answered_at.append((r.seq, answered_bytes))
+            in_buffer = in_buffer - n if pending else 0
+            if r.kind != "ok" and proof is not None:
+                proof.stopped = True          # refused: later reports prove nothing
             if r.kind == "ok":
                 acked += 1
                 if journal is not None and job.index[k] is not None:
@@ -490,6 +562,34 @@ class GrblLink:
                 self._report(acked, total, job.segs[k], check)
                 return None
             return result("error", k, f"{r.raw}: {r.text}")
+
+        def go_strict(why: str) -> None:
+            """A spurious ok was seen: with Bf, the strict bound binds from now on."""
+            nonlocal strict
+            if rx_known is not None and not strict:
+                strict = True
+                if journal is not None:
+                    journal.event("strict", why=why, acked=acked)
+
+        def resync(st: Reply) -> None:
+            """Compare report ``st``'s unread bytes with the count (all answers
+            before it taken): more unread than counted in flight = spurious oks
+            were counted; count the excess in flight again, go strict."""
+            nonlocal in_buffer, resyncs
+            done = next((b for q, b in reversed(answered_at) if q <= st.seq), None)
+            if done is None:
+                return                        # too old to compare (256 answers since)
+            believed = st.written_rx - w0 - done
+            # Bf's free count is RX - 1 - unread on GRBL (RX - unread elsewhere):
+            # rx_used - 1 never exceeds the true unread bytes
+            excess = st.rx_used - 1 - believed
+            if excess > 0 and pending:
+                resyncs += 1
+                in_buffer += excess
+                if journal is not None:
+                    journal.event("resync", unread=st.rx_used - 1, counted=believed,
+                                  acked=acked)
+                go_strict(f"status report: {st.rx_used - 1} bytes unread, {believed} counted")
 
         def take_received() -> None:
             """Journal the answers that arrived before the reset or the loss of
@@ -504,6 +604,15 @@ class GrblLink:
                 if r.epoch == banners:
                     take(r)
 
+        def last_proof() -> None:
+            """Before giving up on a reset or a lost link: what the last report
+            of this controller session proves (it may have arrived with the
+            banner, before the loop took it)."""
+            st = self._status
+            if proof is not None and st is not None and st.epoch == banners \
+                    and st.seq <= taken_seq:
+                self._take_proof(proof, st, sent, w0, journal, None)
+
         def head() -> Optional[int]:
             return pending[0][0] if pending else (sent - 1 if sent else None)
 
@@ -517,6 +626,7 @@ class GrblLink:
             now = time.monotonic()
             if self._lost:
                 take_received()
+                last_proof()
                 res = result("lost", head(), f"link lost: {self._lost}; job state unknown")
                 res.position_lost = True
                 return res
@@ -526,6 +636,7 @@ class GrblLink:
                             lost=a.code in (1, 3))
             if self._banners != banners:
                 take_received()
+                last_proof()
                 k = head()
                 safe = self._after_reset(spontaneous=True)
                 res = result("reset", k, "the controller reset itself (banner received): lines "
@@ -544,6 +655,23 @@ class GrblLink:
                 status_seq = self._status_seq
                 first_unanswered, repolls = None, 0
                 st = self._status
+                if st.epoch == banners and st.rx_used >= 0 and st.written >= 0:
+                    rx_known = (st.rx_used, st.written)
+                    if st.written_rx >= w0:
+                        resync_wait = st
+                # a machine Idle for half a second at a full cut window that no
+                # report can prove (a position on two blocks' paths, no Bf, a
+                # spurious ok seen) may pass one segment: never a hang, only a
+                # weaker bound (journaled as "window")
+                if not (fenced and st.state == "Idle") or (
+                        proof is not None and proof.proven != fence_idle[1]):
+                    fence_idle = (now, proof.proven if proof is not None else 0)
+                elif now - fence_idle[0] >= max(0.5, 2 * self.status_interval):
+                    fence_pass = True
+                if proof is not None and st.epoch == banners:
+                    proof_wait = st           # once the answers before it are taken
+                    # (lines answered, all answered) when the report came
+                    proof_snap = (acked, not pending) if taken_seq == st.seq else None
                 if st.state == "Alarm" and not check:
                     return stop("alarm", "the controller reports Alarm (its ALARM message was "
                                 "not received)", head(), lost=True)
@@ -565,6 +693,14 @@ class GrblLink:
                                     "garbled)", pending[0][0])
                 else:
                     idle_mark = None
+            if resync_wait is not None and taken_seq >= resync_wait.seq:
+                resync(resync_wait)
+                resync_wait = None
+            if proof_wait is not None and taken_seq >= proof_wait.seq and self._alarm is None:
+                done_ok = proof_snap[0] if proof_snap and proof_snap[1] and not spurious \
+                    else None
+                self._take_proof(proof, proof_wait, sent, w0, journal, done_ok)
+                proof_wait = None
             if first_unanswered is not None:
                 waited = now - first_unanswered
                 if waited > self.link_timeout and repolls >= 2:
@@ -584,7 +720,8 @@ class GrblLink:
                     except LinkError:
                         continue
             elif now - last_poll >= self.status_interval or (
-                    sync_ok_at is not None and last_poll < sync_ok_at):
+                    sync_ok_at is not None and last_poll < sync_ok_at) or (
+                    want_poll and now - last_poll >= self.min_poll_interval):
                 try:
                     self._poll()
                 except LinkError:
@@ -592,6 +729,8 @@ class GrblLink:
                 last_poll = now
                 first_unanswered = now
             # send as much as the mode allows
+            want_poll = False
+            fenced = False
             while (sent < total and not self._paused.is_set() and sync_wait is None
                    and self._banners == banners and self._alarm is None):
                 block = job.blocks[sent]
@@ -600,11 +739,26 @@ class GrblLink:
                 if pending and (single or in_buffer + n > budget
                                 or EEPROM_PATTERN.match(job.blocks[pending[-1][0]])):
                     break
+                if strict and \
+                        rx_known[0] + self._written - rx_known[1] + n > self.info.rx_size - 1:
+                    want_poll = True          # oks may be spurious: wait for a report
+                    break
+                if proof is not None and not proof.allows(sent, sent):
+                    if not fence_pass:
+                        want_poll = fenced = True     # the cut window is full
+                        break
+                    fence_pass = False        # no proof came though the machine waits
+                    fence_idle = (now, proof.proven)
+                    if journal is not None:
+                        journal.event("window", i=job.index[sent], seg=job.segs[sent],
+                                      proven=proof.proven)
+
+                begun = time.monotonic()      # an answer that arrived before answers another
                 try:
                     self._write(block.encode("ascii") + b"\n")
                 except LinkError:
                     break
-                pending.append((sent, n, time.monotonic()))
+                pending.append((sent, n, begun))
                 in_buffer += n
                 self.max_in_flight = max(self.max_in_flight, in_buffer)
                 if _SYNC.match(block):
@@ -644,6 +798,23 @@ class GrblLink:
                 safe = self._stop_safely(take)
                 bad.stopped_safely, bad.acked, bad.spurious_acks = safe, acked, spurious
                 return bad
+
+    def _take_proof(self, proof, st: Reply, sent: int, w0: int,
+                    journal: Optional[Journal], answered: Optional[int]) -> None:
+        """Journal what status report ``st`` proves executed (:mod:`.progress`)."""
+        pos = position(st, self._wco)
+        if "WPos" not in st.fields and self._wco is None:
+            pos = None                 # MPos without the work offset: no position proof
+        here = dict(zip(self.info.axes, pos)) if pos is not None else None
+        read = None
+        if st.rx_used >= 0 and st.written >= w0:
+            read = st.written - st.rx_used - w0
+        # with Bf the read count proves Idle's lines without trusting any ok;
+        # the answered count only stands in for it on controllers without Bf
+        lines = proof.update(here, sent, idle=st.state == "Idle", read_bytes=read,
+                             answered=answered if read is None else None)
+        if lines and journal is not None:
+            journal.proof(lines)
 
     def _report(self, acked: int, total: int, seg: str, check: bool) -> None:
         if self.progress is not None:

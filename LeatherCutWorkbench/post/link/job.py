@@ -49,6 +49,8 @@ class SendJob:
     index: List[Optional[int]] = field(default_factory=list)
     segment_ids: List[str] = field(default_factory=list)
     job_segs: List[str] = field(default_factory=list)     # segment per source line
+    fence: bool = True        # limit cutting lines in flight by segment (progress.py);
+                              # off for foreign G-code (a segment per line)
 
     def axes_used(self) -> str:
         """Axis letters the job's blocks use (for the controller axes check)."""
@@ -106,6 +108,9 @@ def job_from_file(path: str, allow_unsealed: bool = False) -> SendJob:
         # foreign G-code: every line is its own segment "L<line number>"
         segs = [f"L{i + 1}" if strip_line(l) else "" for i, l in enumerate(lines)]
         order = [s for s in segs if s]
+        job = job_from_lines(os.path.basename(path), lines, segs, order)
+        job.fence = False
+        return job
     return job_from_lines(os.path.basename(path), lines, segs, order)
 
 
@@ -139,7 +144,8 @@ def resume_job(job: SendJob, seg: str, profile: MachineProfile,
             it.execute(line, n + 1)
         except GcodeError as exc:
             raise InputError(f"cannot rebuild the machine state: {exc}", source=job.name)
-    out = SendJob(job.name, job.source, segment_ids=job.segment_ids, job_segs=job.job_segs)
+    out = SendJob(job.name, job.source, segment_ids=job.segment_ids, job_segs=job.job_segs,
+                  fence=job.fence)
     gap = True
     for k, i in enumerate(job.index):
         if i is None or i < start:

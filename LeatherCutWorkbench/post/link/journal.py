@@ -5,7 +5,8 @@ of its lines, line count, segment ids in order); then one ``ack`` record per
 acknowledged line (``{"e": "ack", "i": <line index>, "s": "<segment id>"}``),
 and events: ``error``, ``alarm``, ``reset``, ``lost``, ``stopped``, ``done``,
 ``resume``, ``sync`` (the ``ok`` of a ``G4 P0``: everything before it was
-*executed*, not only acknowledged).
+*executed*, not only acknowledged) and ``exec`` (``{"e": "exec", "i": [..]}``:
+job lines a status report proved executed, :mod:`.progress`).
 
 Every record is written with one ``write`` call and flushed to the operating
 system at once, so a crash of our process loses nothing; ``os.fsync`` runs for
@@ -124,6 +125,10 @@ class Journal:
 
     def ack(self, index: int, seg: str) -> None:
         self.write({"e": "ack", "i": index, "s": seg})
+
+    def proof(self, lines: List[int]) -> None:
+        """Job lines a status report proved executed (:mod:`.progress`)."""
+        self.write({"e": "exec", "i": list(lines)})
 
     def event(self, kind: str, **data) -> None:
         self.write({"e": kind, "time": time.time(), **data}, sync=True)
@@ -271,6 +276,9 @@ def load_journal(path: str) -> JournalState:
                 st.passes += 1
                 st.acked, st.events, st.last_sync = [], [], None
                 st.runs = [{"acked": [], "end": None, "syncs": [], "run": st.pass_id}]
+            elif e == "exec":
+                if st.runs:
+                    st.runs[-1].setdefault("proofs", set()).update(rec.get("i", []))
             elif e == "ack":
                 st.acked.append(rec["i"])
                 if st.runs and st.runs[-1]["end"] is not None:

@@ -73,6 +73,11 @@ class Reply:
     fields: Dict[str, str] = field(default_factory=dict)
     text: str = ""
     epoch: int = 0            # banners (controller resets) seen before this line arrived
+    seq: int = 0              # ok/error: its number; status: answers received before it
+    written: int = -1         # status: line bytes the host had written when it polled
+    written_rx: int = -1      # status: line bytes written (or being written) when it arrived
+    at: float = 0.0           # ok/error: when it arrived (time.monotonic), 0 unknown
+    rx_used: int = -1         # status: receive-buffer bytes unread (from Bf), -1 unknown
 
 
 def parse_reply(line: str) -> Reply:

@@ -13,15 +13,22 @@ module decides what was executed, with the best evidence the journal holds:
    is where the machine stopped: lines before it were executed, that move and
    everything after it were not (a move the tool stopped at the very end of
    counts as executed);
-3. ``sync``: otherwise (power loss, disconnect, reset while moving) only what
-   a *verified* sync proves: GRBL answers ``G4 P0`` only after the planner ran
+3. ``status`` / ``sync``: otherwise (power loss, disconnect, reset while
+   moving) what the status reports received while streaming proved executed
+   (``exec`` records, :mod:`.progress`: the reported position, Idle with the
+   receive buffer read) -- ``status`` when they reach past the last verified
+   sync -- and what a *verified* sync proves: GRBL answers ``G4 P0`` only after the planner ran
    empty, and the link sends nothing after it until a status report received
    after that ``ok`` shows the controller ``Idle`` (a spurious or early ``ok``
    cannot fake it); every acknowledged line up to the last verified sync was
-   executed.  With the item syncs of the shipped profiles the item being cut
-   may then be cut again from its start (its slit is retraced), the price of
-   not losing anything; with the profile's ``sync_every_segment`` each
-   segment ends with a ``G4 P0`` and only the interrupted segment is re-cut.
+   executed.  The resume then starts at the first segment with a cutting line
+   not proven executed: the interrupted segment or, when the power failed
+   after the tool crossed segment ends and before a report showed it, an
+   earlier one -- without a cut window (the default) the re-cut is what was
+   executed since the last status report, with cut window 2 at most the
+   segment before the interrupted one (why no report can tell these apart:
+   :mod:`.progress`); with the profile's ``sync_every_segment`` (or cut
+   window 1) only the interrupted segment.
 
 Lines a controller refused (``error:N``) are never acknowledged and so never
 executed: their segment is cut again even when later segments were executed.
@@ -133,8 +140,12 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
         # of the last acknowledged move (the controller ran on to the end of its
         # buffer; anywhere else it was moved since, e.g. jogged)
         last = max(motion) if motion else None
+        # the lines a status report proved executed are behind the tool (or it
+        # is at the end of the last one): the position is looked for from
+        # there (a closed contour's start point is also where it ends)
+        behind = -1 if end.get("reconnect") else max(run.get("proofs", ()), default=-1)
         for i in sorted(motion):
-            if i <= last_sync or (end.get("reconnect") and i != last):
+            if i <= last_sync or i < behind or (end.get("reconnect") and i != last):
                 continue
             for k, mv in enumerate(motion[i]):
                 t = locate(mv, pos, tol)
@@ -145,8 +156,11 @@ def executed_in_run(run: Dict, source: Sequence[str], axes: str, wrapped: str, t
                     continue
                 stop = i + 1 if at_end else i
                 run["tool"] = (i, "after" if at_end else "on")
-                return {j for j in acked_set if j < stop}, "position"
-    return {j for j in acked_set if j <= last_sync}, "sync"
+                return {j for j in acked_set if j < stop} | set(run.get("proofs", ())), \
+                    "position"
+    synced = {j for j in acked_set if j <= last_sync}
+    proofs = set(run.get("proofs", ()))
+    return synced | proofs, ("status" if proofs - synced else "sync")
 
 
 def executed_lines(runs: Sequence[Dict], source: Sequence[str], axes: str, wrapped: str,

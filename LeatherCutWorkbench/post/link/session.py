@@ -5,7 +5,9 @@ cutter* command both run (the GUI runs it in a worker thread via
 Order: open the port (exclusive) -> greet and identify -> plan what to send
 (the job, or the resume program) -> check the job's axes against the
 controller -> refuse Door/Hold, home when locked in Alarm (profile ``homing``)
--> optional check-mode pass (``$C``) -> open the journal -> stream -> close.
+-> the safety check of the lines to send (:func:`..safety.check_program`:
+the resume preamble and re-written feeds are the link's own lines) ->
+optional check-mode pass (``$C``) -> open the journal -> stream -> close.
 With ``resume_from`` the journal must exist and belong to the same job; the
 stream is then :func:`~.job.resume_job` of the job at that segment, skipping
 segments after the first incomplete one that the journal shows executed
@@ -34,6 +36,7 @@ from typing import Callable, Dict, Optional
 
 from ...core.errors import InputError
 from ..profiles import MachineProfile
+from ..safety import check_program
 from .feeds import linear_feed_only
 from .grbl import ControllerInfo, GrblLink, LinkError, StreamResult
 from .job import SendJob, resume_job
@@ -183,6 +186,9 @@ class SendSession:
             zero = self._zero()
             if link.feed_linear_only and self.profile.rotary_in_feed:
                 to_send, self.outcome.feeds_adjusted = linear_feed_only(to_send, self.profile)
+            # the lines the link made (resume preamble, feeds taken back) pass
+            # the same check as the job: nothing unchecked reaches the machine
+            check_program(to_send.blocks, self.profile, f"{self.job.name} (lines to send)")
             self.streamed = to_send
             if self.check:
                 self.outcome.check = link.run_check(to_send, self.mode)
