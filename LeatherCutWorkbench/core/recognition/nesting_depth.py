@@ -1,6 +1,7 @@
 """Containment of closed loops: which loop lies directly inside which.
 
-Loops are taken largest first; a grid over bounding boxes (plain tuples) gives
+Loops are taken largest first; a bulk box pass (:func:`_box_pairs`) skips
+the loops that no larger box holds, a grid over bounding boxes (plain tuples) gives
 the few loops that can contain a given one, and an even-odd ray test of a point
 of the smaller loop against the larger loop's outline (flattened within the
 chord tolerance, exact for polygons) decides.  The ray test is written here
@@ -20,6 +21,7 @@ from collections import defaultdict
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import FreeCAD
+import numpy as np
 
 from ..geometry import Point
 from .loops import Loop
@@ -103,19 +105,57 @@ def parents(loops: Sequence[Loop], tol: float) -> List[Optional[int]]:
     order = sorted(range(len(loops)), key=lambda i: -loops[i].area)
     index = LoopIndex(loops)
     parent: List[Optional[int]] = [None] * len(loops)
+    needs, container = _box_pairs(loops, tol)
     for i in order:
         lp = loops[i]
-        p = lp.sample_point()
-        cands = [j for j in index.at(p)
-                 if loops[j].area > lp.area and _box_in(lp.bbox, loops[j].bbox, tol)
-                 and (lp.cluster is None or loops[j].cluster != lp.cluster)]
-        cands.sort(key=lambda j: loops[j].area)
-        for j in cands:
-            if contains(loops[j], lp, p, tol):
-                parent[i] = j
-                break
-        index.add(i, lp.bbox)
+        if needs[i]:
+            p = lp.sample_point()
+            cands = [j for j in index.at(p)
+                     if loops[j].area > lp.area and _box_in(lp.bbox, loops[j].bbox, tol)
+                     and (lp.cluster is None or loops[j].cluster != lp.cluster)]
+            cands.sort(key=lambda j: loops[j].area)
+            for j in cands:
+                if contains(loops[j], lp, p, tol):
+                    parent[i] = j
+                    break
+        if container[i]:
+            index.add(i, lp.bbox)
     return parent
+
+
+def _box_pairs(loops: Sequence[Loop], tol: float) -> Tuple[List[bool], List[bool]]:
+    """(per loop: is there a candidate parent?, per loop: is it a candidate
+    parent of some loop?), a candidate being a larger loop of another cluster
+    whose box holds the loop's box within ``tol`` (:func:`_box_in`).
+
+    A bulk pass (shapely's STRtree over the boxes grown by a margin above
+    ``tol``, then the exact tests of :func:`parents` in numpy, the same float
+    operations) so that the loops without any candidate -- most loops of a
+    drawing, all of a grid of parts -- skip the per-loop search; the others and
+    the index of the candidates go through :func:`parents` unchanged."""
+    import shapely
+
+    n = len(loops)
+    if n < 2:
+        return [False] * n, [False] * n
+    bb = np.array([lp.bbox for lp in loops], dtype=float).reshape(n, 4)
+    area = np.array([lp.area for lp in loops], dtype=float)
+    cl = np.array([-1 if lp.cluster is None else lp.cluster for lp in loops], dtype=np.int64)
+    m = 2.0 * tol + 1e-9 * (1.0 + float(np.abs(bb).max()))
+    if not np.isfinite(m):                      # no box test in bulk: search every loop
+        return [True] * n, [True] * n
+    boxes = shapely.box(bb[:, 0] - m, bb[:, 1] - m, bb[:, 2] + m, bb[:, 3] + m)
+    inner, outer = shapely.STRtree(boxes).query(boxes)
+    bi, bo = bb[inner], bb[outer]
+    ok = ((area[outer] > area[inner])
+          & (bi[:, 0] >= bo[:, 0] - tol) & (bi[:, 1] >= bo[:, 1] - tol)
+          & (bi[:, 2] <= bo[:, 2] + tol) & (bi[:, 3] <= bo[:, 3] + tol)
+          & ((cl[inner] < 0) | (cl[outer] != cl[inner])))
+    needs = np.zeros(n, dtype=bool)
+    container = np.zeros(n, dtype=bool)
+    needs[inner[ok]] = True
+    container[outer[ok]] = True
+    return needs.tolist(), container.tolist()
 
 
 def depths(parent: Sequence[Optional[int]], loops: Sequence[Loop]) -> List[int]:
