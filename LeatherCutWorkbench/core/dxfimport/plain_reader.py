@@ -31,7 +31,11 @@ EOF) happen before, in :mod:`.reader`, for both paths.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Iterator, List, Optional, Tuple
+from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
+
+from ..model import EdgeSource, LineEdge
+from ..progress import ProgressFn, report
+from .limits import check_expanded
 
 #: Entity types the fast path reads.
 PLAIN_TYPES = frozenset(("LINE", "LWPOLYLINE", "ARC", "CIRCLE", "POINT"))
@@ -107,6 +111,37 @@ class PlainEntity:
 
     def dxftype(self) -> str:
         return self._type
+
+
+class PlainLine:
+    """One plain LINE without extrusion, kept lean (a big drawing is mostly
+    LINEs): ``dxftype()``, ``dxf`` made on demand; :func:`convert_plain` reads
+    the slots (points as (x, y, z), ``layer`` / ``color`` None when absent)."""
+
+    __slots__ = ("start", "end", "handle", "layer", "color")
+    _type = "LINE"
+
+    def __init__(self, start: Tuple[float, float, float], end: Tuple[float, float, float],
+                 handle: str, layer: Optional[str], color: Optional[int]):
+        self.start = start
+        self.end = end
+        self.handle = handle
+        self.layer = layer
+        self.color = color
+
+    def dxftype(self) -> str:
+        return "LINE"
+
+    @property
+    def dxf(self) -> Attribs:
+        attrs: Dict[str, Any] = {"start": self.start, "end": self.end, "handle": self.handle}
+        if self.layer is not None:
+            attrs["layer"] = self.layer
+        if self.color is not None:
+            attrs["color"] = self.color
+        dxf = Attribs()
+        dxf.__dict__ = attrs
+        return dxf
 
 
 class _LwPoints:
@@ -228,17 +263,32 @@ class _Stream:
         self.i = i + 1
         return self.codes[i], self.values[i]
 
-    def until_zero(self) -> Tuple[List[int], List[str]]:
-        """Codes and values up to (not including) the next group code 0."""
+    def entity(self) -> Tuple[str, List[int], List[str]]:
+        """The next entity: its type (the value of a group code 0) and the codes
+        and values of its tags, up to (not including) the next group code 0;
+        ``("ENDSEC", [], [])`` consumes only the ENDSEC pair."""
+        while self.i >= len(self.codes):
+            if not self._more():
+                raise _NotPlain("entities not closed")
+        i = self.i
+        if self.codes[i] != 0:
+            raise _NotPlain("entity without type")
+        dxftype = self.values[i]
+        if dxftype == "ENDSEC":
+            self.i = i + 1
+            return dxftype, [], []
+        if dxftype not in PLAIN_TYPES:
+            raise _NotPlain(f"{dxftype} is not a plain entity")
         while True:
             try:
-                j = self.codes.index(0, self.i)
+                j = self.codes.index(0, i + 1)
             except ValueError:
                 if not self._more():
                     raise _NotPlain("not closed") from None
+                i = 0            # _more keeps the lists from the entity's group 0 on
                 continue
-            i, self.i = self.i, j
-            return self.codes[i:j], self.values[i:j]
+            self.i = j
+            return dxftype, self.codes[i + 1:j], self.values[i + 1:j]
 
 
 class _Parser:
@@ -247,7 +297,7 @@ class _Parser:
     def __init__(self) -> None:
         self.header: Dict[str, Any] = {}
         self.layers: List[str] = []
-        self.entities: List[PlainEntity] = []
+        self.entities: List[Any] = []      # PlainEntity or PlainLine
         #: handle of the *Model_Space block record: the owner (330) of every entity
         self.owner: Optional[str] = None
 
@@ -340,23 +390,29 @@ class _Parser:
         raise _NotPlain("blocks not closed")
 
     def _entities(self, pairs: _Stream) -> Tuple[int, str]:
-        plans: Dict[Tuple, List[Tuple]] = {}
         names: Dict[str, str] = {}
+        makers: Dict[Tuple, Callable[[List[str]], Any]] = {}
         append = self.entities.append
+        last: Tuple[str, List[int]] = ("", [])
+        make: Callable[[List[str]], Any] = _make
         while True:
-            code, dxftype = next(pairs)
-            if code != 0:
-                raise _NotPlain("entity without type")
+            dxftype, codes, values = pairs.entity()
             if dxftype == "ENDSEC":
-                return code, dxftype
-            if dxftype not in PLAIN_TYPES:
-                raise _NotPlain(f"{dxftype} is not a plain entity")
-            codes, values = pairs.until_zero()
-            key = (dxftype, *codes)
-            plan = plans.get(key)
-            if plan is None:
-                plan = plans[key] = _plan(dxftype, codes)
-            append(_make(dxftype, plan, values, names, self.owner))
+                return 0, dxftype
+            if dxftype != last[0] or codes != last[1]:   # most entities repeat the last layout
+                key = (dxftype, *codes)
+                make = makers.get(key)
+                if make is None:
+                    make = makers[key] = self._maker(dxftype, _plan(dxftype, codes), names)
+                last = (dxftype, codes)
+            append(make(values))
+
+    def _maker(self, dxftype: str, plan: List[Tuple], names: Dict[str, str]
+               ) -> Callable[[List[str]], Any]:
+        """The function making an entity from its tag values, for one plan."""
+        owner = self.owner
+        line = _line_maker(plan, names, owner) if dxftype == "LINE" else None
+        return line or (lambda values: _make(dxftype, plan, values, names, owner))
 
 
 def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
@@ -450,6 +506,58 @@ def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
     return steps
 
 
+def _line_maker(plan: List[Tuple], names: Dict[str, str], owner: Optional[str]
+                ) -> Optional[Callable[[List[str]], PlainLine]]:
+    """A faster :func:`_make` for the LINEs of one plan (most of a big drawing):
+    the same checks, the steps unrolled, a lean :class:`PlainLine`; None when
+    the plan has an extrusion, which :func:`_make` then reads."""
+    at: Dict[str, Tuple] = {}
+    checks = []
+    for step in plan:
+        if step[0] in "omz":
+            checks.append(step)
+        elif step[1] == "extrusion":
+            return None
+        else:
+            at[step[1]] = step[2:]
+    sx, sy, sz = at["start"]
+    ex, ey, ez = at["end"]
+    ih = at["handle"][0]
+    il = at["layer"][0] if "layer" in at else -1
+    ic = at["color"][0] if "color" in at else -1
+
+    def make(values: List[str]) -> PlainLine:
+        for step in checks:
+            _check(step, values, owner)
+        handle = values[ih]
+        if not handle or handle != handle.strip() or not int(handle, 16):
+            raise _NotPlain("empty handle, spaces around it or handle 0")
+        layer = None
+        if il >= 0:
+            layer = values[il]
+            if not layer or layer != layer.strip():
+                raise _NotPlain("empty layer, or spaces around it")
+            layer = names.setdefault(layer, layer)
+        return PlainLine((float(values[sx]), float(values[sy]), float(values[sz]) if sz >= 0 else 0.0),
+                         (float(values[ex]), float(values[ey]), float(values[ez]) if ez >= 0 else 0.0),
+                         handle, layer, int(values[ic]) if ic >= 0 else None)
+    return make
+
+
+def _check(step: Tuple, values: List[str], owner: Optional[str]) -> None:
+    """The checks of a plan: owner (330) is the model space, subclass marker
+    as expected, paper space flag (67) zero."""
+    op = step[0]
+    if op == "o":
+        if values[step[2]] != owner:
+            raise _NotPlain("owner is not the model space")
+    elif op == "m":
+        if values[step[2]] != step[1]:
+            raise _NotPlain("unexpected subclass marker")
+    elif int(values[step[2]]) != 0:      # "z": group 67, paper space
+        raise _NotPlain("paper space entity")
+
+
 def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str],
           owner: Optional[str]) -> PlainEntity:
     """The entity from its tag ``values`` read as ``plan`` says; ``names`` keeps
@@ -479,14 +587,8 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
             rows[-1][step[3]] = float(values[step[2]])
         elif op == "i":
             attrs[step[1]] = int(values[step[2]])
-        elif op == "o":
-            if values[step[2]] != owner:
-                raise _NotPlain("owner is not the model space")
-        elif op == "m":
-            if values[step[2]] != step[1]:
-                raise _NotPlain("unexpected subclass marker")
-        elif int(values[step[2]]) != 0:      # "z": group 67, paper space
-            raise _NotPlain("paper space entity")
+        else:
+            _check(step, values, owner)
     if attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
         raise _NotPlain("an OCS entity")
     e = PlainEntity(dxftype, Attribs())
@@ -497,3 +599,42 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
         e.closed = bool(attrs.get("flags", 0) & 1)
     e.dxf.__dict__ = attrs
     return e
+
+
+def convert_plain(entities: List[Any], t: Tuple[float, ...], out: Any, role: Callable[[str], str],
+                  visit: Callable[..., None], progress: Optional[ProgressFn], lo: float,
+                  hi: float) -> None:
+    """Convert the model-space ``entities`` of a :class:`PlainDocument` into the
+    collector ``out`` under the affine map ``t`` (unit scale to mm), exactly as
+    ``Walker.walk(..., consume=True)`` does -- same edges, sources, counters,
+    progress calls and expansion check -- but LINEs, most of a big drawing,
+    are turned into their :class:`LineEdge` here in one loop instead of one
+    ``Walker.visit`` / ``entities.line`` / ``apply`` call chain each; every
+    other entity goes to ``visit`` (``Walker.visit``).  ``role`` maps a layer
+    to its role (``Walker._role``).  Each entity is removed from the list once
+    converted, so entities and edges never all coexist."""
+    check_expanded(len(entities), "", out.path)     # no INSERT in a plain drawing
+    n = max(len(entities), 1)
+    step = max(n // 50, 500)
+    a, b, c, tx, d, e_, f, ty = t
+    append = out.edges.append
+    lines = 0
+    for i, e in enumerate(entities):
+        if i % step == 0:
+            report(progress, lo + (hi - lo) * i / n, f"converting entities ({i}/{n})")
+        entities[i] = None
+        if type(e) is not PlainLine:
+            visit(e, t, "", "", None, None, "", 0)
+            continue
+        layer = "0" if e.layer is None else e.layer
+        x, y, z = e.start
+        u, v, w = e.end
+        # the arithmetic of transform.apply, term by term (same floats, signed zeros too)
+        append(LineEdge((a * x + b * y + c * z + tx, d * x + e_ * y + f * z + ty),
+                        (a * u + b * v + c * w + tx, d * u + e_ * v + f * w + ty),
+                        EdgeSource(layer, 256 if e.color is None else e.color, e.handle,
+                                   "LINE", "", role(layer), "")))
+        lines += 1
+    if lines:
+        out.exploded["LINE"] += lines
+        out.converted["LINE"] += lines
