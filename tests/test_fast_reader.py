@@ -10,7 +10,7 @@ import sys
 import ezdxf
 import pytest
 
-from LeatherCutWorkbench.core.dxfimport import ImportOptions, read_drawing, reader
+from LeatherCutWorkbench.core.dxfimport import ImportOptions, plain_reader, read_drawing, reader
 from LeatherCutWorkbench.core.dxfimport.plain_reader import PlainLine, read_plain
 from LeatherCutWorkbench.core.errors import InputError
 
@@ -237,3 +237,21 @@ def test_runs_of_lines_in_changing_layouts_give_the_same_drawing_and_progress(tm
     def points(d):
         return [repr((e.start, e.end)) for e in d.edges if hasattr(e, "end")]
     assert points(fast) == points(slow) and len(points(fast)) > 500
+
+
+@pytest.mark.parametrize("chunk", [64, 100, 1 << 18])
+def test_runs_of_lines_across_chunk_boundaries_give_the_same_drawing(tmp_path, monkeypatch, chunk):
+    """LINEs of one layout are read a run at a time within a chunk of the file
+    (plain_reader._LineReader.run): a LINE whose tags go on past its layout
+    (a colour tag here and there) must not be cut at a chunk boundary."""
+    monkeypatch.setattr(plain_reader, "_CHUNK_BYTES", chunk)
+    body = []
+    for k in range(600):
+        body.append(f"0\nLINE\n5\n{k + 0x20:X}\n8\nCUT\n10\n{k}\n20\n0\n11\n{k}\n21\n5\n")
+        if k % 5 == 3:
+            body.append("62\n3\n")
+    path = tmp_path / "runs.dxf"
+    path.write_text("0\nSECTION\n2\nENTITIES\n" + "".join(body) + "0\nENDSEC\n0\nEOF\n")
+    assert _same(str(path), ImportOptions(cleanup=False)) == "plain"
+    fast, _err, _used = _import(str(path), ImportOptions(cleanup=False), plain=True)
+    assert [e.src.color for e in fast.edges] == [3 if k % 5 == 3 else 256 for k in range(600)]

@@ -31,7 +31,11 @@ EOF) happen before, in :mod:`.reader`, for both paths.
 
 from __future__ import annotations
 
+from itertools import repeat
+from operator import attrgetter
 from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
+
+import numpy as np
 
 from ..model import EdgeSource, LineEdge
 from ..progress import ProgressFn, report
@@ -406,12 +410,14 @@ class _Parser:
                     make = makers[key] = self._maker(dxftype, _plan(dxftype, codes), names)
                 last = (dxftype, codes)
             append(make(values))
+            if isinstance(make, _LineReader):
+                make.run(pairs, codes, self.entities)
 
     def _maker(self, dxftype: str, plan: List[Tuple], names: Dict[str, str]
                ) -> Callable[[List[str]], Any]:
         """The function making an entity from its tag values, for one plan."""
         owner = self.owner
-        line = _line_maker(plan, names, owner) if dxftype == "LINE" else None
+        line = _LineReader.for_plan(plan, names, owner) if dxftype == "LINE" else None
         return line or (lambda values: _make(dxftype, plan, values, names, owner))
 
 
@@ -506,42 +512,105 @@ def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
     return steps
 
 
-def _line_maker(plan: List[Tuple], names: Dict[str, str], owner: Optional[str]
-                ) -> Optional[Callable[[List[str]], PlainLine]]:
-    """A faster :func:`_make` for the LINEs of one plan (most of a big drawing):
-    the same checks, the steps unrolled, a lean :class:`PlainLine`; None when
-    the plan has an extrusion, which :func:`_make` then reads."""
-    at: Dict[str, Tuple] = {}
-    checks = []
-    for step in plan:
-        if step[0] in "omz":
-            checks.append(step)
-        elif step[1] == "extrusion":
-            return None
-        else:
-            at[step[1]] = step[2:]
-    sx, sy, sz = at["start"]
-    ex, ey, ez = at["end"]
-    ih = at["handle"][0]
-    il = at["layer"][0] if "layer" in at else -1
-    ic = at["color"][0] if "color" in at else -1
+class _LineReader:
+    """A faster :func:`_make` for the LINEs of one tag layout (most of a big
+    drawing): the same checks, the steps unrolled, a lean :class:`PlainLine`;
+    :meth:`run` reads the LINEs of the same layout that follow at once.  Made
+    by :meth:`for_plan`, None when the plan has an extrusion (:func:`_make`
+    reads those)."""
 
-    def make(values: List[str]) -> PlainLine:
-        for step in checks:
-            _check(step, values, owner)
-        handle = values[ih]
+    def __init__(self, at: Dict[str, Tuple], checks: List[Tuple], names: Dict[str, str],
+                 owner: Optional[str]):
+        self.sx, self.sy, self.sz = at["start"]
+        self.ex, self.ey, self.ez = at["end"]
+        self.ih = at["handle"][0]
+        self.il = at["layer"][0] if "layer" in at else -1
+        self.ic = at["color"][0] if "color" in at else -1
+        self.checks = checks
+        self.names = names
+        self.owner = owner
+
+    @classmethod
+    def for_plan(cls, plan: List[Tuple], names: Dict[str, str], owner: Optional[str]
+                 ) -> Optional["_LineReader"]:
+        at: Dict[str, Tuple] = {}
+        checks = []
+        for step in plan:
+            if step[0] in "omz":
+                checks.append(step)
+            elif step[1] == "extrusion":
+                return None
+            else:
+                at[step[1]] = step[2:]
+        return cls(at, checks, names, owner)
+
+    def __call__(self, values: List[str]) -> PlainLine:
+        for step in self.checks:
+            _check(step, values, self.owner)
+        handle = values[self.ih]
         if not handle or handle != handle.strip() or not int(handle, 16):
             raise _NotPlain("empty handle, spaces around it or handle 0")
         layer = None
-        if il >= 0:
-            layer = values[il]
+        if self.il >= 0:
+            layer = values[self.il]
             if not layer or layer != layer.strip():
                 raise _NotPlain("empty layer, or spaces around it")
-            layer = names.setdefault(layer, layer)
-        return PlainLine((float(values[sx]), float(values[sy]), float(values[sz]) if sz >= 0 else 0.0),
-                         (float(values[ex]), float(values[ey]), float(values[ez]) if ez >= 0 else 0.0),
+            layer = self.names.setdefault(layer, layer)
+        sz, ez, ic = self.sz, self.ez, self.ic
+        return PlainLine((float(values[self.sx]), float(values[self.sy]),
+                          float(values[sz]) if sz >= 0 else 0.0),
+                         (float(values[self.ex]), float(values[self.ey]),
+                          float(values[ez]) if ez >= 0 else 0.0),
                          handle, layer, int(values[ic]) if ic >= 0 else None)
-    return make
+
+    def run(self, pairs: "_Stream", codes: List[int], entities: List[Any]) -> None:
+        """Append to ``entities`` the LINEs with tag codes ``codes`` that follow
+        in the stream's current chunk, read column by column (one ``map`` of
+        ``float``, ``int`` or a check over each attribute's values: the same
+        conversions and checks as :meth:`__call__`, without a Python loop per
+        LINE)."""
+        row = [0, *codes]
+        width = len(row)
+        cs, vs, start = pairs.codes, pairs.values, pairs.i
+        m = (len(cs) - start - 1) // width      # rows followed by a code in this chunk
+        if m < 2:
+            return
+        same = (np.asarray(cs[start:start + m * width]).reshape(m, width) == row).all(axis=1)
+        types = vs[start:start + m * width:width]
+        m = min(m if same.all() else int(same.argmin()),
+                m if types.count("LINE") == m else [t == "LINE" for t in types].index(False))
+        if m and cs[start + m * width] != 0:    # the last LINE goes on: more tags, not this layout
+            m -= 1
+        if m < 1:
+            return
+        end = start + m * width
+
+        def col(j: int) -> List[str]:
+            return vs[start + 1 + j:end:width]
+
+        for step in self.checks:
+            values = col(step[2])
+            if (values.count(self.owner) != m if step[0] == "o" else
+                    values.count(step[1]) != m if step[0] == "m" else any(map(int, values))):
+                raise _NotPlain("owner, subclass marker or paper space flag")
+        handles = col(self.ih)
+        if "" in handles or list(map(str.strip, handles)) != handles or \
+                not all(map(int, handles, repeat(16))):
+            raise _NotPlain("empty handle, spaces around it or handle 0")
+        layers: Any = repeat(None)
+        if self.il >= 0:
+            layers = col(self.il)
+            if any(not name or name != name.strip() for name in set(layers)):
+                raise _NotPlain("empty layer, or spaces around it")
+            layers = list(map(self.names.setdefault, layers, layers))
+        colors = map(int, col(self.ic)) if self.ic >= 0 else repeat(None)
+
+        def floats(j: int) -> Any:
+            return map(float, col(j)) if j >= 0 else repeat(0.0)
+        starts = zip(floats(self.sx), floats(self.sy), floats(self.sz))
+        ends = zip(floats(self.ex), floats(self.ey), floats(self.ez))
+        entities.extend(map(PlainLine, starts, ends, handles, layers, colors))
+        pairs.i = end
 
 
 def _check(step: Tuple, values: List[str], owner: Optional[str]) -> None:
@@ -606,35 +675,61 @@ def convert_plain(entities: List[Any], t: Tuple[float, ...], out: Any, role: Cal
                   hi: float) -> None:
     """Convert the model-space ``entities`` of a :class:`PlainDocument` into the
     collector ``out`` under the affine map ``t`` (unit scale to mm), exactly as
-    ``Walker.walk(..., consume=True)`` does -- same edges, sources, counters,
-    progress calls and expansion check -- but LINEs, most of a big drawing,
-    are turned into their :class:`LineEdge` here in one loop instead of one
-    ``Walker.visit`` / ``entities.line`` / ``apply`` call chain each; every
-    other entity goes to ``visit`` (``Walker.visit``).  ``role`` maps a layer
-    to its role (``Walker._role``).  Each entity is removed from the list once
-    converted, so entities and edges never all coexist."""
+    ``Walker.walk`` does -- same edges, sources, counters, progress calls and
+    expansion check -- but runs of :class:`PlainLine` (most of a big drawing)
+    become their :class:`LineEdge` a block at a time (:func:`_line_edges`)
+    instead of one ``Walker.visit`` / ``entities.line`` / ``apply`` call chain
+    each; every other entity goes to ``visit`` (``Walker.visit``).  ``role``
+    maps a layer to its role (``Walker._role``).  Entities are removed from the
+    list once converted, so entities and edges never all coexist."""
     check_expanded(len(entities), "", out.path)     # no INSERT in a plain drawing
-    n = max(len(entities), 1)
+    count = len(entities)
+    n = max(count, 1)
     step = max(n // 50, 500)
-    a, b, c, tx, d, e_, f, ty = t
-    append = out.edges.append
     lines = 0
-    for i, e in enumerate(entities):
-        if i % step == 0:
-            report(progress, lo + (hi - lo) * i / n, f"converting entities ({i}/{n})")
-        entities[i] = None
-        if type(e) is not PlainLine:
+    i = 0
+    while i < count:
+        j = i
+        while j < count and j - i < _LINE_BLOCK and type(entities[j]) is PlainLine:
+            j += 1
+        for k in range(-(-i // step) * step, max(j, i + 1), step):
+            report(progress, lo + (hi - lo) * k / n, f"converting entities ({k}/{n})")
+        if j == i:
+            e, entities[i] = entities[i], None
             visit(e, t, "", "", None, None, "", 0)
+            i += 1
             continue
-        layer = "0" if e.layer is None else e.layer
-        x, y, z = e.start
-        u, v, w = e.end
-        # the arithmetic of transform.apply, term by term (same floats, signed zeros too)
-        append(LineEdge((a * x + b * y + c * z + tx, d * x + e_ * y + f * z + ty),
-                        (a * u + b * v + c * w + tx, d * u + e_ * v + f * w + ty),
-                        EdgeSource(layer, 256 if e.color is None else e.color, e.handle,
-                                   "LINE", "", role(layer), "")))
-        lines += 1
+        block = entities[i:j]
+        entities[i:j] = repeat(None, j - i)
+        _line_edges(block, t, role, out.edges)
+        lines += j - i
+        i = j
     if lines:
         out.exploded["LINE"] += lines
         out.converted["LINE"] += lines
+
+
+#: PlainLines converted at a time (bounds the memory of the block's arrays).
+_LINE_BLOCK = 1 << 13
+
+
+def _line_edges(block: List[PlainLine], t: Tuple[float, ...], role: Callable[[str], str],
+                edges: List[Any]) -> None:
+    """Append the edges of ``block`` to ``edges``: what ``entities.line`` makes
+    of each LINE, with the arithmetic of ``transform.apply`` done by numpy
+    (the same IEEE operations in the same order: the same floats)."""
+    a, b, c, tx, d, e, f, ty = t
+    ends = []
+    for name in ("start", "end"):
+        x, y, z = np.array(list(map(attrgetter(name), block)), dtype=float).reshape(-1, 3).T
+        ends.append(zip((a * x + b * y + c * z + tx).tolist(), (d * x + e * y + f * z + ty).tolist()))
+    layers = list(map(attrgetter("layer"), block))
+    if None in layers:
+        layers = ["0" if layer is None else layer for layer in layers]
+    colors = list(map(attrgetter("color"), block))
+    if None in colors:
+        colors = [256 if color is None else color for color in colors]
+    roles = {layer: role(layer) for layer in set(layers)}
+    sources = map(EdgeSource, layers, colors, map(attrgetter("handle"), block), repeat("LINE"),
+                  repeat(""), map(roles.__getitem__, layers), repeat(""))
+    edges.extend(map(LineEdge, ends[0], ends[1], sources))
