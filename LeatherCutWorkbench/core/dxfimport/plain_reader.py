@@ -18,7 +18,10 @@ pairs and an extrusion of (0, 0, 1) when one is given.  For such a file :func:`r
 :class:`PlainDocument` that answers the few questions the importer asks a
 document (``modelspace()``, ``header``, ``layers``, ``blocks``, ``layouts``,
 ``dxfversion``) with the values ezdxf would give; the entity converters in
-:mod:`.entities` run unchanged on its entities.  For anything else (an
+:mod:`.entities` run unchanged on its entities, except LINEs: runs of LINEs
+with the same tags are read column by column into lean :class:`PlainLine`
+objects and :func:`convert_plain` makes their edges a block at a time (1 M
+LINEs are most of a big drawing's import).  For anything else (an
 unknown group code, a missing or repeated one, a value that is not a number
 where one is due, a DXF version ezdxf would upgrade, ...) it returns None
 and the caller uses ezdxf, so every refusal and repair of the ezdxf path
@@ -31,7 +34,7 @@ EOF) happen before, in :mod:`.reader`, for both paths.
 
 from __future__ import annotations
 
-from itertools import repeat
+from itertools import chain, repeat
 from operator import attrgetter
 from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 
@@ -721,7 +724,8 @@ def _line_edges(block: List[PlainLine], t: Tuple[float, ...], role: Callable[[st
     a, b, c, tx, d, e, f, ty = t
     ends = []
     for name in ("start", "end"):
-        x, y, z = np.array(list(map(attrgetter(name), block)), dtype=float).reshape(-1, 3).T
+        x, y, z = np.fromiter(chain.from_iterable(map(attrgetter(name), block)), float,
+                              3 * len(block)).reshape(-1, 3).T
         ends.append(zip((a * x + b * y + c * z + tx).tolist(), (d * x + e * y + f * z + ty).tolist()))
     layers = list(map(attrgetter("layer"), block))
     if None in layers:
