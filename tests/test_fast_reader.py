@@ -10,8 +10,8 @@ import sys
 import ezdxf
 import pytest
 
-from LeatherCutWorkbench.core.dxfimport import ImportOptions, read_drawing, reader
-from LeatherCutWorkbench.core.dxfimport.plain_reader import read_plain
+from LeatherCutWorkbench.core.dxfimport import ImportOptions, plain_reader, read_drawing, reader
+from LeatherCutWorkbench.core.dxfimport.plain_reader import PlainLine, read_plain
 from LeatherCutWorkbench.core.errors import InputError
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -187,3 +187,71 @@ def test_an_entity_owned_by_paper_space_without_its_67_flag_gives_the_same_resul
     path.write_text("\n".join(out) + "\n")
     assert _same(str(path)) == "ezdxf"
     assert _same(str(src)) == "ezdxf"
+
+
+def _progress_and_drawing(path, options, plain: bool):
+    calls = []
+    saved = reader.read_plain
+    if not plain:
+        reader.read_plain = lambda data: None
+    try:
+        d = read_drawing(path, options, progress=lambda f, msg: calls.append((f, msg)))
+    finally:
+        reader.read_plain = saved
+    return calls, d
+
+
+@pytest.mark.parametrize("options", [ImportOptions(), ImportOptions(cleanup=False, units="inch")])
+def test_runs_of_lines_in_changing_layouts_give_the_same_drawing_and_progress(tmp_path, options):
+    """The fast path builds LINE edges in one loop (plain_reader.convert_plain)
+    with one reader per tag layout: layouts that change from one LINE to the
+    next (layer, colour, z, extrusion, subclass markers), signed zeros, other
+    entities in between and enough entities for several progress reports give
+    the same drawing and the same progress calls as the ezdxf path."""
+    layouts = [
+        "0\nLINE\n5\n{h}\n8\nCUT\n10\n{x}\n20\n-0.0\n11\n{x2}\n21\n-0\n",
+        "0\nLINE\n5\n{h}\n8\nCUT\n62\n3\n10\n{x}\n20\n1\n30\n-2.5\n11\n{x2}\n21\n1\n31\n0\n",
+        "0\nLINE\n5\n{h}\n10\n{x}\n20\n2\n11\n{x2}\n21\n2\n",                    # layer 0
+        "0\nLINE\n5\n{h}\n8\nPen 2\n10\n{x}\n20\n3\n11\n{x2}\n21\n3\n210\n0\n220\n0\n230\n1\n",
+        "0\nLINE\n5\n{h}\n100\nAcDbEntity\n8\nCUT\n100\nAcDbLine\n10\n{x}\n20\n4\n11\n{x2}\n21\n4\n",
+        "0\nCIRCLE\n5\n{h}\n8\nCUT\n10\n{x}\n20\n50\n40\n2\n",
+    ]
+    body = []
+    for k in range(1300):
+        x = -0.0 if k % 7 == 0 else k * 0.25 - 40
+        body.append(layouts[(k // 3 + k % 2) % len(layouts)].format(h=f"{k + 0x20:X}", x=x,
+                                                                     x2=x + 1.5))
+    path = tmp_path / "runs.dxf"
+    path.write_text(_R2000 + "0\nSECTION\n2\nENTITIES\n" + "".join(body) + "0\nENDSEC\n0\nEOF\n")
+    assert _same(str(path), options) == "plain"
+    fast_calls, fast = _progress_and_drawing(str(path), options, plain=True)
+    slow_calls, slow = _progress_and_drawing(str(path), options, plain=False)
+    assert fast_calls == slow_calls
+    assert sum("converting entities" in msg for _f, msg in fast_calls) == 3
+    kinds = [(k // 3 + k % 2) % len(layouts) for k in range(1300)]
+    assert fast.stats["entities_converted"] == {"CIRCLE": kinds.count(5), "LINE": 1300 - kinds.count(5)}
+    # both LINE readers ran: the lean one, and the general one for the extrusion layout
+    entities = read_plain(path.read_bytes()).modelspace()
+    assert sum(type(e) is PlainLine for e in entities) == 1300 - kinds.count(5) - kinds.count(3)
+    # the same floats to the last bit and sign (== would take -0.0 for 0.0)
+    def points(d):
+        return [repr((e.start, e.end)) for e in d.edges if hasattr(e, "end")]
+    assert points(fast) == points(slow) and len(points(fast)) > 500
+
+
+@pytest.mark.parametrize("chunk", [64, 100, 1 << 18])
+def test_runs_of_lines_across_chunk_boundaries_give_the_same_drawing(tmp_path, monkeypatch, chunk):
+    """LINEs of one layout are read a run at a time within a chunk of the file
+    (plain_reader._LineReader.run): a LINE whose tags go on past its layout
+    (a colour tag here and there) must not be cut at a chunk boundary."""
+    monkeypatch.setattr(plain_reader, "_CHUNK_BYTES", chunk)
+    body = []
+    for k in range(600):
+        body.append(f"0\nLINE\n5\n{k + 0x20:X}\n8\nCUT\n10\n{k}\n20\n0\n11\n{k}\n21\n5\n")
+        if k % 5 == 3:
+            body.append("62\n3\n")
+    path = tmp_path / "runs.dxf"
+    path.write_text("0\nSECTION\n2\nENTITIES\n" + "".join(body) + "0\nENDSEC\n0\nEOF\n")
+    assert _same(str(path), ImportOptions(cleanup=False)) == "plain"
+    fast, _err, _used = _import(str(path), ImportOptions(cleanup=False), plain=True)
+    assert [e.src.color for e in fast.edges] == [3 if k % 5 == 3 else 256 for k in range(600)]

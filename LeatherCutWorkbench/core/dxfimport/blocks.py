@@ -62,10 +62,10 @@ class Walker:
         return role
 
     def walk(self, entities: "list[Any]", root: Affine, progress: Optional[ProgressFn],
-             lo: float, hi: float, consume: bool = False) -> None:
+             lo: float, hi: float) -> None:
         """Convert the model-space ``entities`` under ``root`` (unit scale);
-        progress goes from ``lo`` to ``hi``.  ``consume``: each entity is removed
-        from the list once converted (so entities and edges never all coexist)."""
+        progress goes from ``lo`` to ``hi``.  (A plain drawing is converted by
+        :func:`.plain_reader.convert_plain` instead.)"""
         self._check_expansion(entities)
         n = max(len(entities), 1)
         step = max(n // 50, 500)
@@ -76,8 +76,6 @@ class Walker:
             if self.rules.pieces_from_inserts and e.dxftype() == "INSERT":
                 piece = self._piece_key(e)
             self.visit(e, root, "", "", None, None, piece, 0)
-            if consume:
-                entities[i] = None
 
     def _check_expansion(self, entities: "list[Any]") -> None:
         """Refuse (limits.py) before expanding anything when the blocks would

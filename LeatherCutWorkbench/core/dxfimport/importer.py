@@ -26,7 +26,7 @@ from .extents import bounds, local_offset, translate
 from .limits import check_geometry
 from .options import ImportOptions
 from .pieces import build_pieces
-from .plain_reader import PlainDocument
+from .plain_reader import PlainDocument, convert_plain
 from .reader import open_dxf
 from .transform import scale_affine
 from .units import MM_PER_UNIT, aama_units, header_units, parse_units, plausibility_warning
@@ -77,7 +77,10 @@ def _read(path: str, options: ImportOptions, progress: Optional[ProgressFn]) -> 
     plain = isinstance(doc, PlainDocument)
     if plain:
         doc.drop_entities()          # walked and freed one by one (peak memory)
-    walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8, consume=plain)
+        convert_plain(entities, scale_affine(scale), out, walker._role, walker.visit,
+                      progress, 0.35, 0.8)
+    else:
+        walker.walk(entities, scale_affine(scale), progress, 0.35, 0.8)
     del entities, types
     out.finish()
     findings.extend(out.findings)

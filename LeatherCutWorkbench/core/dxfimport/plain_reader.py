@@ -18,7 +18,10 @@ pairs and an extrusion of (0, 0, 1) when one is given.  For such a file :func:`r
 :class:`PlainDocument` that answers the few questions the importer asks a
 document (``modelspace()``, ``header``, ``layers``, ``blocks``, ``layouts``,
 ``dxfversion``) with the values ezdxf would give; the entity converters in
-:mod:`.entities` run unchanged on its entities.  For anything else (an
+:mod:`.entities` run unchanged on its entities, except LINEs: runs of LINEs
+with the same tags are read column by column into lean :class:`PlainLine`
+objects and :func:`convert_plain` makes their edges a block at a time (1 M
+LINEs are most of a big drawing's import).  For anything else (an
 unknown group code, a missing or repeated one, a value that is not a number
 where one is due, a DXF version ezdxf would upgrade, ...) it returns None
 and the caller uses ezdxf, so every refusal and repair of the ezdxf path
@@ -31,7 +34,15 @@ EOF) happen before, in :mod:`.reader`, for both paths.
 
 from __future__ import annotations
 
-from typing import Any, Dict, Iterator, List, Optional, Tuple
+from itertools import chain, repeat
+from operator import attrgetter
+from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
+
+import numpy as np
+
+from ..model import EdgeSource, LineEdge
+from ..progress import ProgressFn, report
+from .limits import check_expanded
 
 #: Entity types the fast path reads.
 PLAIN_TYPES = frozenset(("LINE", "LWPOLYLINE", "ARC", "CIRCLE", "POINT"))
@@ -107,6 +118,37 @@ class PlainEntity:
 
     def dxftype(self) -> str:
         return self._type
+
+
+class PlainLine:
+    """One plain LINE without extrusion, kept lean (a big drawing is mostly
+    LINEs): ``dxftype()``, ``dxf`` made on demand; :func:`convert_plain` reads
+    the slots (points as (x, y, z), ``layer`` / ``color`` None when absent)."""
+
+    __slots__ = ("start", "end", "handle", "layer", "color")
+    _type = "LINE"
+
+    def __init__(self, start: Tuple[float, float, float], end: Tuple[float, float, float],
+                 handle: str, layer: Optional[str], color: Optional[int]):
+        self.start = start
+        self.end = end
+        self.handle = handle
+        self.layer = layer
+        self.color = color
+
+    def dxftype(self) -> str:
+        return "LINE"
+
+    @property
+    def dxf(self) -> Attribs:
+        attrs: Dict[str, Any] = {"start": self.start, "end": self.end, "handle": self.handle}
+        if self.layer is not None:
+            attrs["layer"] = self.layer
+        if self.color is not None:
+            attrs["color"] = self.color
+        dxf = Attribs()
+        dxf.__dict__ = attrs
+        return dxf
 
 
 class _LwPoints:
@@ -228,17 +270,32 @@ class _Stream:
         self.i = i + 1
         return self.codes[i], self.values[i]
 
-    def until_zero(self) -> Tuple[List[int], List[str]]:
-        """Codes and values up to (not including) the next group code 0."""
+    def entity(self) -> Tuple[str, List[int], List[str]]:
+        """The next entity: its type (the value of a group code 0) and the codes
+        and values of its tags, up to (not including) the next group code 0;
+        ``("ENDSEC", [], [])`` consumes only the ENDSEC pair."""
+        while self.i >= len(self.codes):
+            if not self._more():
+                raise _NotPlain("entities not closed")
+        i = self.i
+        if self.codes[i] != 0:
+            raise _NotPlain("entity without type")
+        dxftype = self.values[i]
+        if dxftype == "ENDSEC":
+            self.i = i + 1
+            return dxftype, [], []
+        if dxftype not in PLAIN_TYPES:
+            raise _NotPlain(f"{dxftype} is not a plain entity")
         while True:
             try:
-                j = self.codes.index(0, self.i)
+                j = self.codes.index(0, i + 1)
             except ValueError:
                 if not self._more():
                     raise _NotPlain("not closed") from None
+                i = 0            # _more keeps the lists from the entity's group 0 on
                 continue
-            i, self.i = self.i, j
-            return self.codes[i:j], self.values[i:j]
+            self.i = j
+            return dxftype, self.codes[i + 1:j], self.values[i + 1:j]
 
 
 class _Parser:
@@ -247,7 +304,7 @@ class _Parser:
     def __init__(self) -> None:
         self.header: Dict[str, Any] = {}
         self.layers: List[str] = []
-        self.entities: List[PlainEntity] = []
+        self.entities: List[Any] = []      # PlainEntity or PlainLine
         #: handle of the *Model_Space block record: the owner (330) of every entity
         self.owner: Optional[str] = None
 
@@ -340,23 +397,31 @@ class _Parser:
         raise _NotPlain("blocks not closed")
 
     def _entities(self, pairs: _Stream) -> Tuple[int, str]:
-        plans: Dict[Tuple, List[Tuple]] = {}
         names: Dict[str, str] = {}
+        makers: Dict[Tuple, Callable[[List[str]], Any]] = {}
         append = self.entities.append
+        last: Tuple[str, List[int]] = ("", [])
+        make: Callable[[List[str]], Any] = _make
         while True:
-            code, dxftype = next(pairs)
-            if code != 0:
-                raise _NotPlain("entity without type")
+            dxftype, codes, values = pairs.entity()
             if dxftype == "ENDSEC":
-                return code, dxftype
-            if dxftype not in PLAIN_TYPES:
-                raise _NotPlain(f"{dxftype} is not a plain entity")
-            codes, values = pairs.until_zero()
-            key = (dxftype, *codes)
-            plan = plans.get(key)
-            if plan is None:
-                plan = plans[key] = _plan(dxftype, codes)
-            append(_make(dxftype, plan, values, names, self.owner))
+                return 0, dxftype
+            if dxftype != last[0] or codes != last[1]:   # most entities repeat the last layout
+                key = (dxftype, *codes)
+                make = makers.get(key)
+                if make is None:
+                    make = makers[key] = self._maker(dxftype, _plan(dxftype, codes), names)
+                last = (dxftype, codes)
+            append(make(values))
+            if isinstance(make, _LineReader):
+                make.run(pairs, codes, self.entities)
+
+    def _maker(self, dxftype: str, plan: List[Tuple], names: Dict[str, str]
+               ) -> Callable[[List[str]], Any]:
+        """The function making an entity from its tag values, for one plan."""
+        owner = self.owner
+        line = _LineReader.for_plan(plan, names, owner) if dxftype == "LINE" else None
+        return line or (lambda values: _make(dxftype, plan, values, names, owner))
 
 
 def _plan(dxftype: str, codes: List[int]) -> List[Tuple]:
@@ -450,6 +515,121 @@ def _markers(dxftype: str, codes: List[int]) -> List[Tuple]:
     return steps
 
 
+class _LineReader:
+    """A faster :func:`_make` for the LINEs of one tag layout (most of a big
+    drawing): the same checks, the steps unrolled, a lean :class:`PlainLine`;
+    :meth:`run` reads the LINEs of the same layout that follow at once.  Made
+    by :meth:`for_plan`, None when the plan has an extrusion (:func:`_make`
+    reads those)."""
+
+    def __init__(self, at: Dict[str, Tuple], checks: List[Tuple], names: Dict[str, str],
+                 owner: Optional[str]):
+        self.sx, self.sy, self.sz = at["start"]
+        self.ex, self.ey, self.ez = at["end"]
+        self.ih = at["handle"][0]
+        self.il = at["layer"][0] if "layer" in at else -1
+        self.ic = at["color"][0] if "color" in at else -1
+        self.checks = checks
+        self.names = names
+        self.owner = owner
+
+    @classmethod
+    def for_plan(cls, plan: List[Tuple], names: Dict[str, str], owner: Optional[str]
+                 ) -> Optional["_LineReader"]:
+        at: Dict[str, Tuple] = {}
+        checks = []
+        for step in plan:
+            if step[0] in "omz":
+                checks.append(step)
+            elif step[1] == "extrusion":
+                return None
+            else:
+                at[step[1]] = step[2:]
+        return cls(at, checks, names, owner)
+
+    def __call__(self, values: List[str]) -> PlainLine:
+        for step in self.checks:
+            _check(step, values, self.owner)
+        handle = values[self.ih]
+        if not handle or handle != handle.strip() or not int(handle, 16):
+            raise _NotPlain("empty handle, spaces around it or handle 0")
+        layer = None
+        if self.il >= 0:
+            layer = values[self.il]
+            if not layer or layer != layer.strip():
+                raise _NotPlain("empty layer, or spaces around it")
+            layer = self.names.setdefault(layer, layer)
+        sz, ez, ic = self.sz, self.ez, self.ic
+        return PlainLine((float(values[self.sx]), float(values[self.sy]),
+                          float(values[sz]) if sz >= 0 else 0.0),
+                         (float(values[self.ex]), float(values[self.ey]),
+                          float(values[ez]) if ez >= 0 else 0.0),
+                         handle, layer, int(values[ic]) if ic >= 0 else None)
+
+    def run(self, pairs: "_Stream", codes: List[int], entities: List[Any]) -> None:
+        """Append to ``entities`` the LINEs with tag codes ``codes`` that follow
+        in the stream's current chunk, read column by column (one ``map`` of
+        ``float``, ``int`` or a check over each attribute's values: the same
+        conversions and checks as :meth:`__call__`, without a Python loop per
+        LINE)."""
+        row = [0, *codes]
+        width = len(row)
+        cs, vs, start = pairs.codes, pairs.values, pairs.i
+        m = (len(cs) - start - 1) // width      # rows followed by a code in this chunk
+        if m < 2:
+            return
+        same = (np.asarray(cs[start:start + m * width]).reshape(m, width) == row).all(axis=1)
+        types = vs[start:start + m * width:width]
+        m = min(m if same.all() else int(same.argmin()),
+                m if types.count("LINE") == m else [t == "LINE" for t in types].index(False))
+        if m and cs[start + m * width] != 0:    # the last LINE goes on: more tags, not this layout
+            m -= 1
+        if m < 1:
+            return
+        end = start + m * width
+
+        def col(j: int) -> List[str]:
+            return vs[start + 1 + j:end:width]
+
+        for step in self.checks:
+            values = col(step[2])
+            if (values.count(self.owner) != m if step[0] == "o" else
+                    values.count(step[1]) != m if step[0] == "m" else any(map(int, values))):
+                raise _NotPlain("owner, subclass marker or paper space flag")
+        handles = col(self.ih)
+        if "" in handles or list(map(str.strip, handles)) != handles or \
+                not all(map(int, handles, repeat(16))):
+            raise _NotPlain("empty handle, spaces around it or handle 0")
+        layers: Any = repeat(None)
+        if self.il >= 0:
+            layers = col(self.il)
+            if any(not name or name != name.strip() for name in set(layers)):
+                raise _NotPlain("empty layer, or spaces around it")
+            layers = list(map(self.names.setdefault, layers, layers))
+        colors = map(int, col(self.ic)) if self.ic >= 0 else repeat(None)
+
+        def floats(j: int) -> Any:
+            return map(float, col(j)) if j >= 0 else repeat(0.0)
+        starts = zip(floats(self.sx), floats(self.sy), floats(self.sz))
+        ends = zip(floats(self.ex), floats(self.ey), floats(self.ez))
+        entities.extend(map(PlainLine, starts, ends, handles, layers, colors))
+        pairs.i = end
+
+
+def _check(step: Tuple, values: List[str], owner: Optional[str]) -> None:
+    """The checks of a plan: owner (330) is the model space, subclass marker
+    as expected, paper space flag (67) zero."""
+    op = step[0]
+    if op == "o":
+        if values[step[2]] != owner:
+            raise _NotPlain("owner is not the model space")
+    elif op == "m":
+        if values[step[2]] != step[1]:
+            raise _NotPlain("unexpected subclass marker")
+    elif int(values[step[2]]) != 0:      # "z": group 67, paper space
+        raise _NotPlain("paper space entity")
+
+
 def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, str],
           owner: Optional[str]) -> PlainEntity:
     """The entity from its tag ``values`` read as ``plan`` says; ``names`` keeps
@@ -479,14 +659,8 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
             rows[-1][step[3]] = float(values[step[2]])
         elif op == "i":
             attrs[step[1]] = int(values[step[2]])
-        elif op == "o":
-            if values[step[2]] != owner:
-                raise _NotPlain("owner is not the model space")
-        elif op == "m":
-            if values[step[2]] != step[1]:
-                raise _NotPlain("unexpected subclass marker")
-        elif int(values[step[2]]) != 0:      # "z": group 67, paper space
-            raise _NotPlain("paper space entity")
+        else:
+            _check(step, values, owner)
     if attrs.get("extrusion", _Z_AXIS) != _Z_AXIS:
         raise _NotPlain("an OCS entity")
     e = PlainEntity(dxftype, Attribs())
@@ -497,3 +671,69 @@ def _make(dxftype: str, plan: List[Tuple], values: List[str], names: Dict[str, s
         e.closed = bool(attrs.get("flags", 0) & 1)
     e.dxf.__dict__ = attrs
     return e
+
+
+def convert_plain(entities: List[Any], t: Tuple[float, ...], out: Any, role: Callable[[str], str],
+                  visit: Callable[..., None], progress: Optional[ProgressFn], lo: float,
+                  hi: float) -> None:
+    """Convert the model-space ``entities`` of a :class:`PlainDocument` into the
+    collector ``out`` under the affine map ``t`` (unit scale to mm), exactly as
+    ``Walker.walk`` does -- same edges, sources, counters, progress calls and
+    expansion check -- but runs of :class:`PlainLine` (most of a big drawing)
+    become their :class:`LineEdge` a block at a time (:func:`_line_edges`)
+    instead of one ``Walker.visit`` / ``entities.line`` / ``apply`` call chain
+    each; every other entity goes to ``visit`` (``Walker.visit``).  ``role``
+    maps a layer to its role (``Walker._role``).  Entities are removed from the
+    list once converted, so entities and edges never all coexist."""
+    check_expanded(len(entities), "", out.path)     # no INSERT in a plain drawing
+    count = len(entities)
+    n = max(count, 1)
+    step = max(n // 50, 500)
+    lines = 0
+    i = 0
+    while i < count:
+        j = i
+        while j < count and j - i < _LINE_BLOCK and type(entities[j]) is PlainLine:
+            j += 1
+        for k in range(-(-i // step) * step, max(j, i + 1), step):
+            report(progress, lo + (hi - lo) * k / n, f"converting entities ({k}/{n})")
+        if j == i:
+            e, entities[i] = entities[i], None
+            visit(e, t, "", "", None, None, "", 0)
+            i += 1
+            continue
+        block = entities[i:j]
+        entities[i:j] = repeat(None, j - i)
+        _line_edges(block, t, role, out.edges)
+        lines += j - i
+        i = j
+    if lines:
+        out.exploded["LINE"] += lines
+        out.converted["LINE"] += lines
+
+
+#: PlainLines converted at a time (bounds the memory of the block's arrays).
+_LINE_BLOCK = 1 << 13
+
+
+def _line_edges(block: List[PlainLine], t: Tuple[float, ...], role: Callable[[str], str],
+                edges: List[Any]) -> None:
+    """Append the edges of ``block`` to ``edges``: what ``entities.line`` makes
+    of each LINE, with the arithmetic of ``transform.apply`` done by numpy
+    (the same IEEE operations in the same order: the same floats)."""
+    a, b, c, tx, d, e, f, ty = t
+    ends = []
+    for name in ("start", "end"):
+        x, y, z = np.fromiter(chain.from_iterable(map(attrgetter(name), block)), float,
+                              3 * len(block)).reshape(-1, 3).T
+        ends.append(zip((a * x + b * y + c * z + tx).tolist(), (d * x + e * y + f * z + ty).tolist()))
+    layers = list(map(attrgetter("layer"), block))
+    if None in layers:
+        layers = ["0" if layer is None else layer for layer in layers]
+    colors = list(map(attrgetter("color"), block))
+    if None in colors:
+        colors = [256 if color is None else color for color in colors]
+    roles = {layer: role(layer) for layer in set(layers)}
+    sources = map(EdgeSource, layers, colors, map(attrgetter("handle"), block), repeat("LINE"),
+                  repeat(""), map(roles.__getitem__, layers), repeat(""))
+    edges.extend(map(LineEdge, ends[0], ends[1], sources))
