@@ -118,7 +118,7 @@ class Placer:
                         self._pockets[fk] = HullPockets(outers)
                     fits = self._pockets[fk].ifp(v.core_hull)
                     hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
-                                     self._ob_forms[fk], v.core_hull, fits)
+                                     self._ob_forms[fk], fits=fits)
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(spec, hit, rc, v)

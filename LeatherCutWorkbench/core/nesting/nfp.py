@@ -178,26 +178,24 @@ def pair_nfp(a: Variant, b: Variant, a_forms: Forms = None,
 
 def region_ifp(outers: Sequence[IntPath], obstacles: Sequence[IntPath], b_outer: IntPath,
                ob_forms: "Sequence[Forms] | None" = None,
-               b_fit: "IntPath | None" = None,
                fits: "List[IntPath] | None" = None) -> List[IntPath]:
     """Inner-fit region of the ring ``b_outer`` in a container made of simple CCW
     ``outers`` with ``obstacles`` (CCW rings: defects, forbidden zones) it must
     not overlap; ``ob_forms``: the obstacles' :func:`obstacle_forms` (the
-    same for every part, so the caller keeps them).  ``b_fit``: a ring
-    containing ``b_outer`` (its convex hull) to fit in the ``outers`` instead:
-    fewer vertices to sweep, a subset of the region (exact where the outers
-    are convex; the obstacles always see ``b_outer`` itself).  ``fits``: the
-    inner-fit region in the ``outers`` computed by the caller (then the
-    outers are not swept)."""
-    ring = b_fit if b_fit is not None else b_outer
-    bw = max(p[0] for p in ring) - min(p[0] for p in ring)
-    bh = max(p[1] for p in ring) - min(p[1] for p in ring)
-    given, fits = fits is not None, list(fits or [])
-    for o in ([] if given else outers):
-        if max(p[0] for p in o) - min(p[0] for p in o) < bw or \
-                max(p[1] for p in o) - min(p[1] for p in o) < bh:
-            continue                      # too narrow for B: skip the sweep
-        fits.extend(inner_fit(o, ring))
+    same for every part, so the caller keeps them).  ``fits``: the inner-fit
+    region in the ``outers`` computed by the caller (then the outers are not
+    swept; the obstacles always see ``b_outer`` itself)."""
+    if fits is None:
+        fits = []
+        bw = max(p[0] for p in b_outer) - min(p[0] for p in b_outer)
+        bh = max(p[1] for p in b_outer) - min(p[1] for p in b_outer)
+        for o in outers:
+            if max(p[0] for p in o) - min(p[0] for p in o) < bw or \
+                    max(p[1] for p in o) - min(p[1] for p in o) < bh:
+                continue                      # too narrow for B: skip the sweep
+            fits.extend(inner_fit(o, b_outer))
+    else:
+        fits = list(fits)
     if not fits:
         return []
     blocked: List[IntPath] = []
