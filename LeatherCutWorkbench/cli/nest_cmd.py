@@ -56,7 +56,8 @@ def add_options(parser: argparse.ArgumentParser, primary: bool) -> None:
     g.add_argument("--copies", dest="nest_copies", type=int, default=None, metavar="N",
                    help="nest N copies of every recognised part (default: each part's quantity)")
     g.add_argument(f"--{pre}time", dest="nest_time", type=non_negative, default=10.0, metavar="S",
-                   help="seconds of improvement search after the first layout (default 10; 0 = none)")
+                   help="time budget in seconds for the whole nest: reading, shapes, no-fit polygons, "
+                        "first layout and search (default 10; 0 = first layout only)")
     g.add_argument(f"--{pre}evaluations", dest="nest_evaluations", type=positive_int, default=None, metavar="N",
                    help="stop each worker after N layouts: same seed, same result on any machine")
     g.add_argument(f"--{pre}workers", dest="nest_workers", type=positive_int, default=None, metavar="N",

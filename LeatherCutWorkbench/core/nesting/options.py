@@ -73,8 +73,9 @@ class NestOptions:
       lets every part turn to any angle (tried every ``rotation_step``).
     * ``mirror_override`` -- when not None, replaces every part's
       ``mirror_allowed``.
-    * ``time_budget`` -- seconds of improvement search after the constructive
-      placement (0 = constructive only).
+    * ``time_budget`` -- seconds for the whole nest, counted from
+      ``started_at``: shapes, no-fit polygons, the first fill and the search
+      (0 = the first fill only, without a limit).
     * ``max_evaluations`` -- when set, every worker stops after this many
       candidate layouts: the result is then identical for the same seed on any
       machine (see docs/CLI.md, determinism).  The time budget still caps the
