@@ -62,10 +62,15 @@ class SendSession:
     and ``leathercut send`` behave identically."""
 
     def __init__(self, gcode_path: str, machine: str, url: str, check_first: bool,
-                 mode: str, resume_from: str = "", confirm_work_zero: bool = False):
+                 mode: str, resume_from: str = "", confirm_work_zero: bool = False,
+                 cut_window: int = 0):
         """``confirm_work_zero``: the operator set the work zero again at the
-        machine, so a resume after a lost position may go on without homing."""
+        machine, so a resume after a lost position may go on without homing.
+        ``cut_window``: segments whose cuts may be in flight before a status
+        report proves them (0 = full look-ahead; as ``leathercut send
+        --cut-window``)."""
         self.gcode_path = gcode_path
+        self.cut_window = cut_window
         self.confirm_work_zero = confirm_work_zero
         self.machine = machine
         self.url = url
@@ -112,7 +117,8 @@ class SendSession:
                                        check=self.check_first,
                                        resume_from=self.resume_from or None,
                                        progress=self._on_progress,
-                                       confirm_work_zero=self.confirm_work_zero)
+                                       confirm_work_zero=self.confirm_work_zero,
+                                       cut_window=self.cut_window)
             self.state = "greeting"
             out = self.session.run()
             if out.controller is not None:
@@ -156,6 +162,13 @@ class SendSession:
             self.session.abort()
 
 
+#: the cut window choices (text, segments; see ``leathercut send --cut-window``)
+CUT_WINDOWS = (
+    (QT_TRANSLATE_NOOP("LeatherCut", "full look-ahead (fastest)"), 0),
+    (QT_TRANSLATE_NOOP("LeatherCut", "2 segments"), 2),
+    (QT_TRANSLATE_NOOP("LeatherCut", "1 segment: exact resume, stops at segment ends"), 1),
+)
+
 #: port choices offered besides the serial ports found: the controller emulator
 EMULATOR_PORTS = ("emulator:grblhal", "emulator:grbl")
 
@@ -194,6 +207,9 @@ class SendPanel:
         self.check = self.form.findChild(QtGui.QCheckBox, "checkFirst")
         self.confirm_zero = self.form.findChild(QtGui.QCheckBox, "confirmWorkZero")
         self.mode = self.form.findChild(QtGui.QComboBox, "streamMode")
+        self.cut_window = self.form.findChild(QtGui.QComboBox, "cutWindow")
+        for text, window in CUT_WINDOWS:
+            self.cut_window.addItem(translate("LeatherCut", text), window)
         self.resume = self.form.findChild(QtGui.QComboBox, "resumeFrom")
         self.bar = self.form.findChild(QtGui.QProgressBar, "progressBar")
         self.status = self.form.findChild(QtGui.QLabel, "statusLabel")
@@ -267,7 +283,8 @@ class SendPanel:
                 self.job.PostPort = url
         self.session = SendSession(self.gcode, self.job.PostMachine, url, self.check.isChecked(),
                                    self.mode.currentText(), self.resume.currentData() or "",
-                                   confirm_work_zero=self.confirm_zero.isChecked())
+                                   confirm_work_zero=self.confirm_zero.isChecked(),
+                                   cut_window=int(self.cut_window.currentData()))
         self.logged = 0
         self.log.clear()
         self.session.start()

@@ -249,9 +249,12 @@ def steps():
     check("emulator offered", p.choose_port("emulator:grblhal") and p.port.text() == "emulator:grblhal",
           [p.choices.itemText(i) for i in range(p.choices.count())])
     p.confirm_zero.setChecked(True)
+    p.cut_window.setCurrentIndex(p.cut_window.findData(1))
     session = p.start()
     check("work zero confirmation taken from the panel", session is not None and
           session.confirm_work_zero, "not passed")
+    check("cut window taken from the panel", session is not None and session.cut_window == 1,
+          "not passed")
     t0 = time.monotonic()
     while session is not None and session.running and time.monotonic() - t0 < 60:
         pump(0.1)
@@ -260,6 +263,9 @@ def steps():
           session.error if session else p.status.text())
     check("the link session got the work zero confirmation",
           session is not None and session.session is not None and session.session.confirm_work_zero,
+          "not passed")
+    check("the link streamed with a cut window of 1 segment",
+          session is not None and session.session is not None and session.session.link.cut_window == 1,
           "not passed")
     p.reject()
 
