@@ -297,8 +297,18 @@
 <context>
     <name>LeatherCut</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="211"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="227"/>
         <source>(post-process the job first)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="169"/>
+        <source>1 segment: exact resume, stops at segment ends</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="168"/>
+        <source>2 segments</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -332,7 +342,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="188"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="201"/>
         <source>Choose a port…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -372,7 +382,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="132"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="133"/>
         <source>DXF drawings (*.dxf *.DXF);;All files (*)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -387,12 +397,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="69"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="70"/>
         <source>Drawing size {0} × {1} mm, units {2} ({3})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="257"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="273"/>
         <source>Enter the port (e.g. /dev/ttyUSB0 or socket://host:23), or choose emulator:grblhal for a dry run.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -452,7 +462,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="22"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="23"/>
         <source>Import DXF</source>
         <translation type="unfinished"></translation>
     </message>
@@ -572,7 +582,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="253"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="269"/>
         <source>Post-process the job as G-code first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -622,7 +632,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="348"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="365"/>
         <source>Send to cutter streams G-code: post-process as gcode</source>
         <translation type="unfinished"></translation>
     </message>
@@ -642,12 +652,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="322"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="339"/>
         <source>Stop the job before closing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="309"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="326"/>
         <source>Stopped ({0}) at line {1}: {2}. Choose where to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -672,7 +682,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="82"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="83"/>
         <source>chosen in this panel</source>
         <translation type="unfinished"></translation>
     </message>
@@ -712,8 +722,13 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="81"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="82"/>
         <source>from the AAMA 'Units:' text</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="167"/>
+        <source>full look-ahead (fastest)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -732,7 +747,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="83"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="84"/>
         <source>not stated: assumed</source>
         <translation type="unfinished"></translation>
     </message>
@@ -752,12 +767,12 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="231"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="247"/>
         <source>start of the job</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="80"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="81"/>
         <source>stated in the file</source>
         <translation type="unfinished"></translation>
     </message>
@@ -802,7 +817,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="48"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="49"/>
         <source>{0} edges on {1} layers, {2} marks, units {3} ({4})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -817,7 +832,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="73"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="74"/>
         <source>{0} pattern pieces</source>
         <translation type="unfinished"></translation>
     </message>
@@ -837,7 +852,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="192"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="205"/>
         <source>{0} – dry run, no machine</source>
         <translation type="unfinished"></translation>
     </message>
@@ -862,7 +877,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="302"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="319"/>
         <source>{0}: {1}/{2} lines, segment {3}, controller {4}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -981,12 +996,12 @@
 <context>
     <name>LeatherCut_ImportDXF</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="119"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="120"/>
         <source>Import DXF…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="120"/>
+        <location filename="../../LeatherCutWorkbench/commands/import_dxf.py" line="121"/>
         <source>Import a DXF drawing into a new LeatherCut job (edges grouped by layer)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1072,12 +1087,12 @@
 <context>
     <name>LeatherCut_SendToCutter</name>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="335"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="352"/>
         <source>Send to cutter…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="336"/>
+        <location filename="../../LeatherCutWorkbench/commands/send_to_cutter.py" line="353"/>
         <source>Stream the posted G-code to a GRBL / grblHAL controller over a serial port, with check mode, pause, stop and resume from the journal</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1393,11 +1408,19 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <source>Cut window</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <source>Cycle start</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <source>Every acknowledged line is journalled next to the G-code file. After a fault choose the segment to resume from; nothing is resent automatically.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <source>How much cutting may run ahead of the controller's status reports. After a power loss the job resumes at the first segment no report proved cut: full look-ahead re-cuts the interrupted segment plus at most what ran since the last report; 1 segment re-cuts only the interrupted segment, but the head stops at every segment end</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
