@@ -80,10 +80,6 @@ class Placer:
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
         self._pockets: Dict[tuple, HullPockets] = {}   # (bin region, exact) -> hull and pockets
-        self._core_forms: Dict[int, object] = {}      # variant -> pieces of -core
-        #: hides: exact inner-fit regions test the part itself against the
-        #: hide's edge (else its convex hull: faster, never wraps a bulge)
-        self.exact_edges = False
 
     # ---------------------------------------------------------------- regions
     def _spec_index(self, b: int) -> int:
@@ -120,8 +116,7 @@ class Placer:
                     # hull of the hide, minus the pockets (a hide is nearly convex)
                     if fk not in self._pockets:
                         self._pockets[fk] = HullPockets(outers)
-                    fits = self._pockets[fk].ifp(v.core_hull, self._core_pieces(v)
-                                                 if exact and self.exact_edges else None)
+                    fits = self._pockets[fk].ifp(v.core_hull)
                     hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
                                      self._ob_forms[fk], fits=fits)
                     rc = self.region_check
@@ -137,13 +132,6 @@ class Placer:
         if lx > hx or ly > hy:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
-
-    def _core_pieces(self, v: Variant):
-        """Edge forms of the convex pieces of -``v.core`` (cached; None: not decomposable)."""
-        if v.index not in self._core_forms:
-            from .nfp import piece_forms
-            self._core_forms[v.index] = piece_forms(v.core, negate=True)
-        return self._core_forms[v.index]
 
     @staticmethod
     def _region_fit(spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:

@@ -108,15 +108,12 @@ class HullPockets:
             self.parts.append((hull if forms is not None else o,
                                FormSet(forms) if forms else forms))
 
-    def ifp(self, b_hull: IntPath, nb_pieces: Optional[FormSet] = None) -> List[IntPath]:
-        """Translations of the convex CCW ring ``b_hull`` inside the outers.
-        With ``nb_pieces`` (the edge forms of the convex pieces of -B for a
-        ring B whose hull is ``b_hull``): translations of B itself (its hull
-        in the hide's hull, B clear of the pockets), exact."""
-        from .nfp import _neg, _tree_union, difference, edge_form, inner_fit
+    def ifp(self, b_hull: IntPath) -> List[IntPath]:
+        """Translations of the convex CCW ring ``b_hull`` inside the outers."""
+        from .nfp import _neg, difference, edge_form, inner_fit
         bw = max(p[0] for p in b_hull) - min(p[0] for p in b_hull)
         bh = max(p[1] for p in b_hull) - min(p[1] for p in b_hull)
-        nb = nb_pieces if nb_pieces else FormSet([edge_form(_neg(b_hull))])
+        nb = FormSet([edge_form(_neg(b_hull))])
         fits: List[IntPath] = []
         for ring, forms in self.parts:
             if max(p[0] for p in ring) - min(p[0] for p in ring) < bw or \
@@ -124,7 +121,6 @@ class HullPockets:
                 continue
             fit = inner_fit(ring, b_hull)
             if forms and fit:
-                sums = sum_all(forms, nb)
-                fit = difference(fit, _tree_union(sums) if len(nb) > 1 else sums)
+                fit = difference(fit, sum_all(forms, nb))
             fits.extend(fit)
         return fits
