@@ -27,6 +27,7 @@ from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
 from .convex_sums import warm_up
+from .nfp import is_convex
 from .hide_shapes import simplify_for_hides
 from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
@@ -201,7 +202,8 @@ def prepare(parts: Sequence[Part], options: NestOptions):
                       region_check=region_check(type_parts, hides, scale, options.tolerance,
                                                 options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
-    warm_up()                      # before the workers fork (each would load it again)
+    if hides or not all(is_convex(v.outer) for v in variants):
+        warm_up()                  # before the workers fork (each would load it again)
     return types, variants, problem, copies, hides, scale
 
 
