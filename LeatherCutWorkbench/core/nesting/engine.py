@@ -26,6 +26,8 @@ from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle, shrink_for_margin
+from .convex_sums import warm_up
+from .nfp import is_convex
 from .hide_shapes import simplify_for_hides
 from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
@@ -173,26 +175,16 @@ class _Best:
         self.on_best(self.build(self.best[1], self.best[2]))
 
 
-def run_own(parts: Sequence[Part], options: NestOptions,
-            progress: Optional[ProgressFn] = None,
-            on_best: Optional[Callable[[Layout], None]] = None,
-            stop: Optional[Callable[[], bool]] = None) -> Layout:
-    """Nest with the project's engine (see module doc); unchecked result.
-
-    The time budget counts from this call (shapes, no-fit polygons, first
-    fill and search).  ``on_best(layout)`` receives each better layout (at
-    most twice a second); ``stop()`` returning True ends the search and keeps
-    the best layout so far (``progress`` returning False cancels)."""
-    t_start = options.started_at if options.started_at is not None else time.monotonic()
-    report(progress, 0.0, "preparing part shapes")
+def prepare(parts: Sequence[Part], options: NestOptions):
+    """Shapes, grid variants, bins and the worker :class:`Problem` of a nest:
+    (types, variants, problem, copies, hides, scale), or None with nothing
+    to nest.  (Also the entry point of the hide fill profile in ``bench/``.)"""
     types = [piece_from_part(p, options.chord_tol, options.rotation_step,
                              options.part_rotations(p.rotations), options.mirror_override)
              for p in parts]
     types = [t for t in types if t.quantity > 0]
-    findings: List[Finding] = []
     if not types:
-        return Layout(containers=[], placements=[], unplaced=[], metrics={"placed_count": 0},
-                      findings=[Finding("warning", "nothing-to-nest", "no parts to nest")])
+        return None
     scale = _grid_scale(types, options)
     half_gap = options.spacing / 2.0
     variants = make_variants(types, scale, half_gap, options.chord_tol)
@@ -210,6 +202,29 @@ def run_own(parts: Sequence[Part], options: NestOptions,
                       region_check=region_check(type_parts, hides, scale, options.tolerance,
                                                 options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
+    if hides or not all(is_convex(v.outer) for v in variants):
+        warm_up()                  # before the workers fork (each would load it again)
+    return types, variants, problem, copies, hides, scale
+
+
+def run_own(parts: Sequence[Part], options: NestOptions,
+            progress: Optional[ProgressFn] = None,
+            on_best: Optional[Callable[[Layout], None]] = None,
+            stop: Optional[Callable[[], bool]] = None) -> Layout:
+    """Nest with the project's engine (see module doc); unchecked result.
+
+    The time budget counts from this call (shapes, no-fit polygons, first
+    fill and search).  ``on_best(layout)`` receives each better layout (at
+    most twice a second); ``stop()`` returning True ends the search and keeps
+    the best layout so far (``progress`` returning False cancels)."""
+    t_start = options.started_at if options.started_at is not None else time.monotonic()
+    report(progress, 0.0, "preparing part shapes")
+    prepared = prepare(parts, options)
+    if prepared is None:
+        return Layout(containers=[], placements=[], unplaced=[], metrics={"placed_count": 0},
+                      findings=[Finding("warning", "nothing-to-nest", "no parts to nest")])
+    types, variants, problem, copies, hides, scale = prepared
+    findings: List[Finding] = []
     report(progress, 0.02, f"nesting {len(copies)} copies of {len(types)} parts")
 
     n_workers = _workers(options)

@@ -33,6 +33,7 @@ import pyclipper
 from shapely.geometry import Polygon
 
 from .convex import convex_pieces
+from .convex_sums import FormSet, sum_all
 from .shapes import IntPath, Variant, convex_hull
 
 #: growth, as a fraction of a variant's larger bounding-box side (module doc)
@@ -104,14 +105,15 @@ class HullPockets:
                     forms = None
                     break
                 forms.extend(edge_form(p) for p in pieces)
-            self.parts.append((hull if forms is not None else o, forms))
+            self.parts.append((hull if forms is not None else o,
+                               FormSet(forms) if forms else forms))
 
     def ifp(self, b_hull: IntPath) -> List[IntPath]:
         """Translations of the convex CCW ring ``b_hull`` inside the outers."""
-        from .nfp import _neg, difference, edge_form, inner_fit, sum_forms
+        from .nfp import _neg, difference, edge_form, inner_fit
         bw = max(p[0] for p in b_hull) - min(p[0] for p in b_hull)
         bh = max(p[1] for p in b_hull) - min(p[1] for p in b_hull)
-        nb = edge_form(_neg(b_hull))
+        nb = FormSet([edge_form(_neg(b_hull))])
         fits: List[IntPath] = []
         for ring, forms in self.parts:
             if max(p[0] for p in ring) - min(p[0] for p in ring) < bw or \
@@ -119,6 +121,6 @@ class HullPockets:
                 continue
             fit = inner_fit(ring, b_hull)
             if forms and fit:
-                fit = difference(fit, [sum_forms(f, nb) for f in forms])
+                fit = difference(fit, sum_all(forms, nb))
             fits.extend(fit)
         return fits

@@ -40,6 +40,7 @@ import numpy as np
 import pyclipper
 
 from .convex import Form, convex_pieces, convex_sum, edge_form, sum_forms
+from .convex_sums import FormSet, sum_all
 from .shapes import IntPath, Variant
 
 _NZ = pyclipper.PFT_NONZERO
@@ -87,7 +88,7 @@ def is_convex(ring: IntPath) -> bool:
 
 def obstacle_forms(ring: IntPath) -> Forms:
     """Edge forms of an obstacle ring for :func:`region_ifp` (one form when convex)."""
-    return [edge_form(ring)] if is_convex(ring) else piece_forms(ring)
+    return FormSet([edge_form(ring)]) if is_convex(ring) else piece_forms(ring)
 
 
 Forms = Optional[List[Form]]
@@ -97,11 +98,11 @@ def piece_forms(ring: IntPath, negate: bool = False) -> Forms:
     """Edge forms of the convex pieces of ``ring`` (of ``-ring`` with
     ``negate``), or None when it cannot be decomposed."""
     if is_convex(ring):
-        return [edge_form(_neg(ring) if negate else ring)]
+        return FormSet([edge_form(_neg(ring) if negate else ring)])
     pieces = convex_pieces(ring)
     if pieces is None:
         return None
-    return [edge_form(_neg(p) if negate else p) for p in pieces]
+    return FormSet([edge_form(_neg(p) if negate else p) for p in pieces])
 
 
 def _tree_union(paths: List[IntPath], group: int = 8) -> List[IntPath]:
@@ -133,7 +134,7 @@ def solid_nfp(a_outer: IntPath, b_outer: IntPath, a_forms: Forms = None,
     pa = a_forms if a_forms is not None else piece_forms(a_outer)
     pb = nb_forms if nb_forms is not None else piece_forms(b_outer, negate=True)
     if pa and pb:
-        outers = [p for p in _tree_union([sum_forms(x, y) for x in pa for y in pb])
+        outers = [p for p in _tree_union(sum_all(pa, pb))
                   if pyclipper.Orientation(p)]
         return [max(outers, key=pyclipper.Area)] if outers else []
     sweep = pyclipper.MinkowskiSum(nb, a_outer, True)
@@ -276,7 +277,8 @@ class NfpCache:
         if v not in self._piece_forms:
             pieces = convex_pieces(self.variants[v].outer)
             self._piece_forms[v] = (None, None) if pieces is None else (
-                [edge_form(p) for p in pieces], [edge_form(_neg(p)) for p in pieces])
+                FormSet([edge_form(p) for p in pieces]),
+                FormSet([edge_form(_neg(p)) for p in pieces]))
         return self._piece_forms[v]
 
     def get(self, a: int, b: int) -> Tuple[List[np.ndarray], Tuple[int, int, int, int]]:

@@ -71,6 +71,9 @@ class Problem:
     hide_net: Optional[List[float]] = None
     #: hides: :class:`part_regions.RegionCheck` for parts with graded regions
     region_check: Optional[object] = None
+    #: hides: odd workers search which copy goes on which hide
+    #: (:mod:`hide_assign`) instead of the fill order
+    assign_hides: bool = True
 
     def placer(self) -> Placer:
         return Placer(self.variants, self.type_variants, self.type_grade, self.bins,
@@ -314,9 +317,16 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
                     if c < best[0]:
                         best, best_hides = (c, cur_seq, tr), order
                         budget.improved(c, cur_seq, _out(tr.placements, order))
+    # odd workers on hides: the order search for ORDER_SHARE of the time left,
+    # then the copy-to-hide search from its best layout (even workers: the
+    # order search throughout -- on Test2 it finds its best set in 15-30 s,
+    # which the copy-to-hide search did not improve in the rest of 60 s)
+    assign = choose_hides and worker % 2 == 1 and problem.assign_hides
+    switch = time.monotonic() + ORDER_SHARE * max(budget.t_end - time.monotonic(), 0.0)
     hist = [cur_cost] * history
     step = 0
-    while (len(copies) > 1 or choose_hides) and not budget.done(evals):
+    while (len(copies) > 1 or choose_hides) and not budget.done(evals) and \
+            not (assign and time.monotonic() > switch):
         budget.check_cancel(evals, best[0])
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
@@ -350,7 +360,47 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
                     budget.improved(c, new_seq, _out(new_pl.placements, new_hides))
         if cur_cost < h:
             hist[slot] = cur_cost
+    if assign and not budget.done(evals):
+        best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best, best_hides,
+                                                evals)
     return best[0], best[1], _out(best[2].placements, best_hides), evals
+
+
+#: odd workers on hides: share of the time after the first fills spent on
+#: the order search before the copy-to-hide search takes over
+ORDER_SHARE = 0.35
+
+
+def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: Budget,
+                  best, best_hides: List[int], evals: int):
+    """Hides, odd workers after the order search: the copy-to-hide search of
+    :mod:`hide_assign`, from the hides the best layout uses, until the deadline.  Returns the best (cost, order, trace), its
+    hide order and the evaluations."""
+    from .blf import Trace
+    from .hide_assign import AssignmentSearch, as_layout, from_layout
+    net = problem.hide_net
+    item_area = sum(problem.type_area[g[0]] for g in best[1])
+    # the hides the best layout uses: the search then shrinks that set hide by hide
+    hides = [best_hides[b] for b in used_positions(best[2].placements)]
+    genes = from_layout(best[2].placements, best[1], best_hides, hides, problem.type_area, net)
+    holder = [best, best_hides]
+
+    def expired() -> bool:
+        budget.check_cancel(evals + s.evals, holder[0][0])
+        return budget.done(evals + s.evals)
+
+    def on_better(state) -> None:
+        seq, placements, order = as_layout(state)
+        c = cost_of(problem, seq, placements, order)
+        if c < holder[0][0]:
+            holder[0], holder[1] = (c, seq, Trace(placements, [])), order
+            budget.improved(c, seq, _out(placements, order))
+
+    s = AssignmentSearch(problem, placer, rng, _mutate, expired)
+    st = s.start(hides, genes)
+    if st is not None:
+        s.run(st, net, on_better, item_area)
+    return holder[0], holder[1], evals + s.evals
 
 
 def run_strip_search(problem: Problem, copies: List[int], seed: int, worker: int,

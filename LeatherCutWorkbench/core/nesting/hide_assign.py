@@ -1,0 +1,303 @@
+"""Hides: which copy goes on which hide of a fixed, small set.
+
+The order search (:mod:`search`) feeds every copy to the first hide where
+it fits, so a change early in the order re-places everything after it on
+every hide, and no single move takes a copy from one hide to another.  On
+large parts (Baldacci Test2: 34 car-seat parts, five on a hide) it ends
+with one poorly filled hide and a hide set larger than needed.
+
+Here the hide set is fixed -- first the hides of the best layout so far --
+and each hide has its own sequence of copies, filled on its own by the
+bottom-left fill (a copy that does not fit that hide stays unplaced).  The
+cost is the part area left unplaced over all hides: a smooth guide (like
+the strip search's shrunk strip) that is 0 exactly when the set holds every
+copy.  Once it does, one hide of the set is swapped for a smaller unused
+hide or dropped (a step down, as a strip is shrunk) and the search makes
+that set hold every copy again.  Moves
+(late-acceptance hill climbing): move a copy (an unplaced one, mostly) to
+another hide, swap two copies of different hides, change one hide's
+sequence (:func:`search._mutate`), or exchange a hide of the set with an
+unused one while the set's net area stays below the best layout's.  A move
+re-fills only the hides it touches, from the first changed position.
+
+Every state that leaves less area unplaced is reported (a knapsack: both
+hides of Test1_first2hides are the set).  A step down may also drop a hide
+(its copies spread over the others, unplaced): the step size adapts as the
+strip search's does.
+"""
+
+from __future__ import annotations
+
+import random
+from typing import Callable, List, Optional, Sequence, Tuple
+
+from .blf import Placer, Trace
+
+Gene = Tuple[int, Optional[int]]
+Placements = List[Tuple[int, int, int, int, int]]
+
+#: hide swaps keep the set's net area within this share of the k smallest hides'
+SLACK = 0.05
+#: fills without less area unplaced before a stuck set is given up
+PATIENCE = 600
+#: the first step down from a set that holds every copy, as a share of its
+#: net area, and the bounds of the adaptive step
+STEP = 0.04
+MIN_STEP = 0.005
+MAX_STEP = 0.25
+#: the search tries k - 1 hides only when the copies fill at most this share of them
+MAX_FILL = 0.66
+
+
+class _Hides:
+    """The set: per position a hide index, its gene sequence and its fill trace."""
+
+    def __init__(self, hides: List[int], genes: List[List[Gene]]):
+        self.hides = hides
+        self.genes = genes
+        self.traces: List[Optional[Trace]] = [None] * len(hides)
+        self.lost = [0.0] * len(hides)      # unplaced part area per hide
+
+    def copy(self) -> "_Hides":
+        c = _Hides(list(self.hides), [list(g) for g in self.genes])
+        c.traces = list(self.traces)
+        c.lost = list(self.lost)
+        return c
+
+    @property
+    def total(self) -> float:
+        return round(sum(self.lost), 6)
+
+
+class AssignmentSearch:
+    """The search of the module doc on ``placer`` (its caches are reused;
+    ``bin_order`` and ``max_bins`` are restored after each fill)."""
+
+    def __init__(self, problem, placer: Placer, rng: random.Random,
+                 mutate: Callable, expired: Callable[[], bool]):
+        self.problem = problem
+        self.placer = placer
+        self.rng = rng
+        self.mutate = mutate
+        self.expired = expired
+        self.area = problem.type_area
+        self.evals = 0
+
+    # ----------------------------------------------------------------- fills
+    def _fill(self, st: _Hides, p: int, first: int, limit: float) -> bool:
+        """Re-fill position ``p`` of ``st`` from gene ``first``; False when the
+        fill left out more than ``limit`` (abandoned) or ran out of time."""
+        pl = self.placer
+        saved = pl.bin_order, pl.max_bins
+        pl.bin_order, pl.max_bins = [st.hides[p]], 1
+        try:
+            prev = st.traces[p]
+            keep = min(first, len(prev.placements)) if prev is not None else 0
+            tr = pl.place(st.genes[p], prev if keep > 0 else None, keep,
+                          give_up=(limit, self.area))
+        finally:
+            pl.bin_order, pl.max_bins = saved
+        self.evals += 1
+        if tr is None:
+            return False
+        st.traces[p] = tr
+        st.lost[p] = sum(self.area[st.genes[p][si][0]] for si in tr.unplaced)
+        return True
+
+    def start(self, hides: List[int], genes: List[List[Gene]]) -> Optional[_Hides]:
+        st = _Hides(hides, genes)
+        for p in range(len(hides)):
+            if not self._fill(st, p, 0, float("inf")):
+                return None
+        return st
+
+    # ----------------------------------------------------------------- moves
+    def _neighbour(self, st: _Hides, net: Sequence[float], net_cap: float,
+                   unused: List[int]) -> Tuple[_Hides, List[Tuple[int, int]]]:
+        """A changed copy of ``st`` and the (position, first gene) to re-fill."""
+        rng = self.rng
+        n = len(st.hides)
+        new = st.copy()
+        r = rng.random()
+        if n >= 2 and r < 0.45:
+            lost = [(p, si) for p in range(n) if st.traces[p] is not None
+                    for si in st.traces[p].unplaced]
+            if lost and rng.random() < 0.8:
+                a, i = rng.choice(lost)
+            else:
+                a = rng.choice([p for p in range(n) if st.genes[p]] or [0])
+                if not st.genes[a]:
+                    return new, []
+                i = rng.randrange(len(st.genes[a]))
+            b = rng.choice([p for p in range(n) if p != a])
+            g = new.genes[a].pop(i)
+            if rng.random() < 0.5:
+                g = (g[0], None)            # free to turn on its new hide
+            # often early on the new hide: placed before (and maybe instead of) others
+            j = rng.randrange(len(new.genes[b]) + 1)
+            if rng.random() < 0.5:
+                j = rng.randrange(len(new.genes[b]) // 3 + 1)
+            new.genes[b].insert(j, g)
+            return new, [(a, i), (b, j)]
+        if n >= 2 and r < 0.7:
+            a, b = rng.sample(range(n), 2)
+            if not st.genes[a] or not st.genes[b]:
+                return new, []
+            i, j = rng.randrange(len(st.genes[a])), rng.randrange(len(st.genes[b]))
+            if st.genes[a][i][0] == st.genes[b][j][0]:
+                return new, []
+            new.genes[a][i], new.genes[b][j] = st.genes[b][j], st.genes[a][i]
+            return new, [(a, i), (b, j)]
+        if unused and r < 0.75:
+            p = rng.randrange(n)
+            total = sum(net[h] for h in st.hides)
+            cands = [h for h in unused if total - net[st.hides[p]] + net[h] <= net_cap]
+            if not cands:
+                return new, []
+            new.hides[p] = rng.choice(cands)
+            new.traces[p] = None
+            return new, [(p, 0)]
+        weights = [st.lost[p] + 1.0 for p in range(n)]
+        p = rng.choices(range(n), weights=weights)[0]
+        if len(st.genes[p]) < 1:
+            return new, []
+        g, first = self.mutate(rng, new.genes[p], self.problem)
+        if first >= len(g):
+            return new, []
+        new.genes[p] = g
+        return new, [(p, first)]
+
+    def run(self, st: _Hides, net: Sequence[float], on_better: Callable[["_Hides"], None],
+            item_area: float, history: int = 50) -> None:
+        """Search from ``st`` until time is up; ``on_better(state)`` on every
+        state that leaves less area unplaced than any before on its set.  A
+        set that holds every copy is followed by a smaller one
+        (:meth:`_smaller`: a step of ``frac`` x its net area, which grows
+        after a success and halves when a set stays stuck for ``PATIENCE``
+        fills -- then the search goes back to the last set that held every
+        copy)."""
+        cur = st
+        hist = [cur.total] * history
+        low = cur.total
+        cap = self._cap(cur, net)
+        on_better(cur)
+        step = since = 0
+        frac = STEP
+        last_done: Optional[_Hides] = None       # the last set that held every copy
+        while not self.expired():
+            since += 1
+            if cur.total < low:
+                low, since = cur.total, 0
+                on_better(cur)
+            if last_done is not None and since > PATIENCE:
+                cur, since, frac = last_done, 0, max(frac / 2.0, MIN_STEP)
+            if cur.total == 0:
+                if cur is not last_done:
+                    frac = min(frac * 1.5, MAX_STEP) if last_done is not None else frac
+                    last_done = cur
+                nxt = self._smaller(cur, net, frac, item_area)
+                if nxt is None:
+                    return
+                cap = sum(net[h] for h in cur.hides)
+                cur = nxt
+                hist = [cur.total] * history
+                low = cur.total
+                since = 0
+                on_better(cur)
+            unused = [h for h in range(len(net)) if h not in set(cur.hides)]
+            new, todo = self._neighbour(cur, net, cap, unused)
+            if not todo:
+                continue
+            slot = step % history
+            step += 1
+            accept = max(cur.total, hist[slot])
+            if self._refill(new, todo, accept) and new.total <= accept:
+                cur = new
+            if cur.total < hist[slot]:
+                hist[slot] = cur.total
+
+    def _refill(self, new: _Hides, todo: List[Tuple[int, int]], accept: float) -> bool:
+        """Re-fill the positions in ``todo`` (position, first changed gene);
+        False when the total would exceed ``accept`` or time ran out."""
+        touched = {p for p, _ in todo}
+        spent = sum(new.lost[p] for p in range(len(new.hides)) if p not in touched)
+        for p in sorted(touched):
+            first = min(f for q, f in todo if q == p)
+            if not self._fill(new, p, first, accept - spent + 1e-6):
+                return False
+            spent += new.lost[p]
+        return True
+
+    @staticmethod
+    def _cap(st: _Hides, net: Sequence[float]) -> float:
+        """Hide swaps keep a set of k hides within ``SLACK`` of the k smallest."""
+        return (1.0 + SLACK) * sum(sorted(net)[:len(st.hides)])
+
+    def _smaller(self, st: _Hides, net: Sequence[float], frac: float,
+                 item_area: float) -> Optional[_Hides]:
+        """A set of less net area than ``st``'s, re-filled: one hide swapped
+        for a smaller unused one, or one hide dropped (its copies spread over
+        the others, unplaced) while the copies fill at most ``MAX_FILL`` of
+        the rest -- the change whose loss of net area is nearest to ``frac``
+        x the set's (one of the two nearest).  None: nothing smaller."""
+        used = set(st.hides)
+        total = sum(net[h] for h in st.hides)
+        moves = [(net[h] - net[u], p, u) for p, h in enumerate(st.hides)
+                 for u in range(len(net)) if u not in used and net[u] < net[h]]
+        if len(st.hides) > 1:
+            moves += [(net[h], p, -1) for p, h in enumerate(st.hides)
+                      if item_area <= MAX_FILL * (total - net[h])]
+        if not moves:
+            return None
+        moves.sort(key=lambda m: abs(m[0] - frac * total))
+        _loss, p, u = self.rng.choice(moves[:2])
+        if u >= 0:
+            new = st.copy()
+            new.hides[p] = u
+            new.traces[p] = None
+            return new if self._fill(new, p, 0, float("inf")) else None
+        hides = [h for q, h in enumerate(st.hides) if q != p]
+        genes = [list(g) for q, g in enumerate(st.genes) if q != p]
+        _spread(genes, st.genes[p], hides, self.area, net)
+        return self.start(hides, genes)
+
+
+def _spread(genes: List[List[Gene]], rest: Sequence[Gene], hides: Sequence[int],
+            area: Sequence[float], net: Sequence[float]) -> None:
+    """Append ``rest`` to the hides' sequences, largest copy first, each to
+    the hide with the most net area not yet claimed by its sequence."""
+    for g in sorted(rest, key=lambda g: -area[g[0]]):
+        free = [net[h] - sum(area[x[0]] for x in genes[p]) for p, h in enumerate(hides)]
+        genes[max(range(len(hides)), key=lambda p: free[p])].append(g)
+
+
+def from_layout(placements: Placements, seq: Sequence[Gene], hide_order: Sequence[int],
+                hides: List[int], area: Sequence[float], net: Sequence[float]) -> List[List[Gene]]:
+    """Per hide of ``hides``: the genes a first-fit layout (positions in
+    ``hide_order``) put there, in their order; copies on other hides or
+    unplaced are appended largest first to the hide with the most free area.
+    Placed copies keep their orientation (a forced gene)."""
+    genes: List[List[Gene]] = [[] for _ in hides]
+    rest: List[Gene] = []
+    for (si, b, vi, _tx, _ty) in placements:
+        t = seq[si][0]
+        h = hide_order[b] if b >= 0 else -1
+        if h in hides:
+            genes[hides.index(h)].append((t, vi))
+        else:
+            rest.append((t, seq[si][1]))
+    _spread(genes, rest, hides, area, net)
+    return genes
+
+
+def as_layout(st: _Hides) -> Tuple[List[Gene], Placements, List[int]]:
+    """(sequence, placements with hide positions, hide order) of a state: the
+    hides' sequences one after the other, as the order search reports them."""
+    seq: List[Gene] = []
+    placements: Placements = []
+    for p, (g, tr) in enumerate(zip(st.genes, st.traces)):
+        base = len(seq)
+        seq.extend(g)
+        for (si, b, vi, tx, ty) in tr.placements:
+            placements.append((base + si, p if b >= 0 else -1, vi, tx, ty))
+    return seq, placements, list(st.hides)

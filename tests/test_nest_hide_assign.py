@@ -1,0 +1,77 @@
+"""The copy-to-hide search (core/nesting/hide_assign.py) on real Baldacci
+geometry: it moves copies from an over-full hide to another until every copy
+is placed, the layout it reports passes the independent checker, and a
+finished set is shrunk to smaller hides."""
+
+import os
+import random
+import time
+from dataclasses import replace
+
+from LeatherCutWorkbench.core.model import Container
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout
+from LeatherCutWorkbench.core.nesting.engine import _to_layout, prepare
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+from LeatherCutWorkbench.core.nesting.hide_assign import AssignmentSearch, as_layout
+from LeatherCutWorkbench.core.nesting.hide_choice import as_hide_indices
+from LeatherCutWorkbench.core.nesting.search import _mutate
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+ANGLES = [0.0, 90.0, 180.0, 270.0]
+
+
+def _setup(scales):
+    """Test8's hide outline at the given scales; a third of Test8's copies
+    (0.46 M units^2: more than a 0.45-scale hide of 0.5 M can hold)."""
+    inst = read_esicup(os.path.join(DATA, "Test8.json"))
+    o = inst.hides[0].outline
+    hides = [Container(id=f"h{k}", kind="hide", outline=[(s * x, s * y) for x, y in o],
+                       base_grade=1) for k, s in enumerate(scales)]
+    parts = [replace(p, grade=1, grade_regions=[], quantity=max(1, p.quantity // 3))
+             for p in inst.parts]
+    opts = NestOptions(container=ContainerSpec.hide(*hides), time_budget=60, workers=1,
+                       rotations_override=ANGLES, seed=1)
+    return parts, hides, opts, prepare(parts, opts)
+
+
+def _search(problem, seconds):
+    t_end = time.monotonic() + seconds
+    return AssignmentSearch(problem, problem.placer(), random.Random(4), _mutate,
+                            lambda: time.monotonic() > t_end)
+
+
+def test_copies_move_off_an_over_full_hide_until_all_are_placed():
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.45, 0.55])
+    s = _search(problem, 40.0)
+    genes = [[(t, None) for t in sorted(copies, key=lambda t: -problem.type_area[t])], []]
+    st = s.start([0, 1], genes)
+    assert st.lost[0] > 0 and st.lost[1] == 0       # everything queued on the small hide
+    seen = []
+    s.run(st, problem.hide_net, lambda state: seen.append(state.copy()),
+          sum(problem.type_area[t] for t in copies))
+    assert seen[0].total > 0
+    done = [x for x in seen if x.total == 0]
+    assert done, "every copy placed on the two hides"
+    seq, placements, order = as_layout(done[0])
+    assert sorted(g[0] for g in seq) == sorted(copies)
+    lay = _to_layout(parts, types, variants, seq, as_hide_indices(placements, order), opts,
+                     scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 2
+
+
+def test_a_finished_set_is_shrunk_to_a_smaller_unused_hide():
+    """Three hides, the copies all on the two largest: once every copy is
+    placed the search swaps the larger one for the unused smaller hide."""
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.7, 0.8, 0.6])
+    s = _search(problem, 8.0)
+    order = sorted(copies, key=lambda t: -problem.type_area[t])
+    genes = [[(t, None) for t in order[0::2]], [(t, None) for t in order[1::2]]]
+    st = s.start([1, 0], genes)
+    assert st.total == 0
+    seen = []
+    s.run(st, problem.hide_net, lambda state: seen.append(state.copy()),
+          sum(problem.type_area[t] for t in copies))
+    net = problem.hide_net
+    done = [x for x in seen if x.total == 0]
+    assert min(sum(net[h] for h in x.hides) for x in done) < net[0] + net[1]
