@@ -89,3 +89,17 @@ def test_usable_region_lets_the_smallest_zone_decide():
     assert usable_region(c, 3).contains(Polygon(rectangle(11, 11, 14, 14)))
     assert not usable_region(c, 3).intersects(Polygon(rectangle(16, 16, 19, 19)))
     assert usable_region(c, 2).contains(Polygon(rectangle(72, 2, 88, 18)))   # the later one
+
+
+def test_first_fill_gives_up_within_the_promised_end():
+    """Under load the first fill of Baldacci Test5 (58 copies on 12 hides) ran
+    to its last resort at 1.5 T + 2 s: 18 s at T = 10, against the promised
+    T + 10 % + 1 s.  The last resort now leaves the final check's reserve
+    inside the promise, and still comes after the search end."""
+    from LeatherCutWorkbench.core.nesting.engine import _deadlines
+    for budget in (1.0, 10.0, 60.0):
+        for n in (5, 58, 280):
+            t_end, _quick, _slow, boxes, give_up = _deadlines(100.0, budget, n, hides=True)
+            reserve = 100.0 + budget - t_end
+            assert t_end < give_up <= 100.0 + 1.1 * budget + 1.0 - min(reserve, 0.25 * budget + 0.5)
+            assert boxes == t_end
