@@ -74,8 +74,12 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
         xs = [p[0] for p in c.outline]
         ys = [p[1] for p in c.outline]
         tol = 0.004 * max(max(xs) - min(xs), max(ys) - min(ys))
+        # edges simplified within 0.02 % of the hide's size, inside the material: Baldacci
+        # Test3/4/9 outlines of 1,100-1,900 vertices left ~400 pocket pieces per hide
+        # (inner-fit regions 4.5x slower than at 2 units on these 10,000-unit hides)
+        edge_tol = max(0.25, 0.05 * tol)
         for g in sorted(set(grades)):
-            outers, holes, region = shrink_for_margin(c, g, m)
+            outers, holes, region = shrink_for_margin(c, g, m, simplify=edge_tol)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
                           [to_grid(_arr(r), scale) for r in holes])
             if region is not None:
