@@ -128,10 +128,11 @@ def _deadlines(t_start: float, budget: float, n_copies: int, hides: bool = False
                ) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
-    fill's last resort end: T + 10 % + 1 s, the promised end, less the same
-    reserve for the final check; only a machine too loaded even for box-only
-    no-fit polygons ever leaves copies unplaced for lack of time -- it was
-    1.5 T + 2 s, and Baldacci Test5 / Test6 then took 18-19 s at T = 10 under load).
+    fill's last resort end: T + 10 % + 1 s, the promised end, less twice that
+    reserve (the placement step under way when it passes, then the final
+    build and check); only a machine too loaded even for box-only no-fit
+    polygons ever leaves copies unplaced for lack of time -- it was 1.5 T + 2 s,
+    and Baldacci Test5 / Test6 then took 18-19 s at T = 10 under load).
 
     The search ends early enough for the final check and layout building
     (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
@@ -144,7 +145,7 @@ def _deadlines(t_start: float, budget: float, n_copies: int, hides: bool = False
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
     slow = t_start + (0.7 if hides else 0.4) * budget
-    return t_end, quick, slow, t_end, t_start + 1.1 * budget + 1.0 - reserve
+    return t_end, quick, slow, t_end, t_start + 1.1 * budget + 1.0 - 2.0 * reserve
 
 
 class _Best:
