@@ -74,10 +74,12 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
         xs = [p[0] for p in c.outline]
         ys = [p[1] for p in c.outline]
         tol = 0.004 * max(max(xs) - min(xs), max(ys) - min(ys))
-        # edges simplified within 0.02 % of the hide's size, inside the material: Baldacci
-        # Test3/4/9 outlines of 1,100-1,900 vertices left ~400 pocket pieces per hide
-        # (inner-fit regions 4.5x slower than at 2 units on these 10,000-unit hides)
-        edge_tol = max(0.25, 0.05 * tol)
+        # finely flattened outlines (edges shorter than 1 % of the hide's size on average)
+        # simplified within 0.02 % of its size, inside the material: Baldacci Test3/4/9
+        # outlines of 1,100-1,900 vertices left ~400 pocket pieces per hide (inner-fit
+        # regions 4.5x slower than at 2 units on these 10,000-unit hides)
+        fine = _perimeter(c.outline) < 2.5 * tol * len(c.outline)
+        edge_tol = max(0.25, 0.05 * tol) if fine else 0.25
         for g in sorted(set(grades)):
             outers, holes, region = shrink_for_margin(c, g, m, simplify=edge_tol)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
@@ -88,6 +90,10 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
         bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades},
                             material=material, coarse=coarse))
     return bins, list(spec.hides), False, len(spec.hides)
+
+
+def _perimeter(ring) -> float:
+    return float(sum(math.dist(ring[i - 1], ring[i]) for i in range(len(ring))))
 
 
 def _coarse_region(region, tol: float, scale: float) -> Tuple[list, list]:
