@@ -81,6 +81,9 @@ def poly(r):
     r = [tuple(p) for p in r]
     if r[0] == r[-1]:
         r = r[:-1]
+    twice_area = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(r, r[1:] + r[:1]))
+    if twice_area < 0:             # PackingSolver rejects clockwise rings (Scarpa's zones)
+        r = r[::-1]
     return ir.build_shape([list(p) for p in r])
 def swh(r):
     s = ir.ShapeWithHoles(); s.shape = poly(r); return s

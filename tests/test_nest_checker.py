@@ -127,3 +127,32 @@ def test_safety_net_moves_rejected_placements_to_unplaced():
     assert layout.metrics["density"] == round(2000 / (length * 50), 6)
     assert layout.metrics["placed_count"] == 1 and layout.metrics["unplaced_count"] == 1
     assert check(parts, layout) == []
+
+
+def test_hide_zones_and_defects_are_built_once_per_check(monkeypatch):
+    """Baldacci Scarpa (240 copies, 2 hides with ~30 holes and ~20 zones): the
+    check rebuilt the zone region of a grade for every copy (~30 ms each) and
+    overran a 10 s budget by 2.6 s.  Each (hide, grade) region is now built
+    once, and the verdicts stay those of the full test."""
+    from LeatherCutWorkbench.core.nesting import checker
+    calls = []
+    real = checker._zone_grade_region
+    monkeypatch.setattr(checker, "_zone_grade_region",
+                        lambda c, g: calls.append((c.id, g)) or real(c, g))
+    holes = [rectangle(x, 40, x + 4, 44) for x in range(2, 98, 8)]     # 12 small defects
+    c = Container(id="h", kind="hide", outline=rectangle(0, 0, 100, 50), defects=holes,
+                  zones=[(1, rectangle(0, 0, 20, 30)), (2, rectangle(80, 0, 100, 30))],
+                  base_grade=3)
+    parts = [rect("a", 5, 5, q=20, grade=3), rect("b", 5, 5, q=20, grade=2)]
+    pls = [Placement("a", k, "h", 22 + 6 * (k % 9), 2 + 6 * (k // 9)) for k in range(18)]
+    pls += [Placement("b", k, "h", 81 + 6 * (k % 3), 2 + 6 * (k // 3)) for k in range(12)]
+    assert check_layout(parts, lay(*pls, container=c)) == []
+    assert sorted(set(calls)) == sorted(calls) == [("h", 2), ("h", 3)]
+    # the same layout with one copy on the grade-1 zone, one on a defect and one 1 mm
+    # from a defect under a 2 mm margin: each still found
+    bad = pls[:-3] + [Placement("b", 17, "h", 2, 2), Placement("b", 18, "h", 9, 38),
+                      Placement("b", 19, "h", 40, 34)]
+    probs = check_layout(parts, lay(*bad, container=c), margin=2)
+    assert any(p.startswith("b#17:") and "below grade 2" in p for p in probs)
+    assert any(p.startswith("b#18:") and "covers defect 1" in p for p in probs)
+    assert any(p.startswith("b#19:") and "margin 2 mm to defect 5" in p for p in probs)

@@ -143,7 +143,7 @@ def _parts_from_args(args, opts):
         inst = read_esicup(args.nest_esicup)
         opts.container = ContainerSpec.hide(*inst.hides) if inst.hides else \
             ContainerSpec.strip(inst.strip_height)
-        return inst.parts, args.nest_esicup, []
+        return inst.parts, args.nest_esicup, list(inst.findings)
     if not args.file:
         raise InputError("no drawing given: leathercut nest FILE.dxf --sheet WxH (or --esicup FILE.json)")
     if not os.path.isfile(args.file):

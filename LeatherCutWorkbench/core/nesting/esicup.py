@@ -33,9 +33,12 @@ import json
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence
 
+from shapely.geometry import Polygon
+from shapely.validation import explain_validity, make_valid
+
 from ..errors import InputError
 from ..geometry import LineSeg, signed_area
-from ..model import Container, Contour, Part
+from ..model import Container, Contour, Finding, Part
 
 
 @dataclass
@@ -44,6 +47,7 @@ class EsicupInstance:
     strip_height: Optional[float]         # None for a bin-packing (hide) instance
     parts: List[Part]
     hides: List[Container] = field(default_factory=list)
+    findings: List[Finding] = field(default_factory=list)   # rings repaired on reading
 
     @property
     def item_area(self) -> float:
@@ -60,6 +64,38 @@ def _contour(cid: str, pts: Sequence[Sequence[float]], ccw: bool) -> Contour:
         p = p[::-1]
     segs = [LineSeg(p[i], p[(i + 1) % len(p)]) for i in range(len(p))]
     return Contour(id=cid, segments=segs)
+
+
+def _valid_rings(pts: Sequence[Sequence[float]], src: str, findings: List[Finding],
+                 single: bool = False) -> List[list]:
+    """The ring ``pts`` as one or more simple rings covering the same area.
+
+    Some Baldacci rings touch or cross themselves (Test10's item zones: a
+    spike back along an edge, a loop of a few units); shapely's
+    ``make_valid`` splits such a ring into its simple pieces (zero-area
+    spikes vanish) and a warning names the ring.  A ``single`` ring (a part
+    or hide outline) that would fall apart, or any ring whose repair has a
+    hole, raises InputError: no simple ring keeps it."""
+    ring = [(float(x), float(y)) for x, y in pts]
+    if len(ring) > 1 and ring[0] == ring[-1]:
+        ring = ring[:-1]
+    if len(ring) < 3:
+        raise InputError("ring has fewer than 3 vertices", src)
+    poly = Polygon(ring)
+    if poly.is_valid:
+        return [ring]
+    why = explain_validity(poly)
+    fixed = make_valid(poly)
+    pieces = [g for g in getattr(fixed, "geoms", [fixed])
+              if g.geom_type == "Polygon" and g.area > 0]
+    if not pieces or (single and len(pieces) > 1) or any(g.interiors for g in pieces):
+        raise InputError(f"ring is not simple ({why}) and cannot be repaired into "
+                         f"{'one simple ring' if single else 'simple rings'}", src)
+    findings.append(Finding("warning", "ring-repaired",
+                            f"ring is not simple ({why}): read as {len(pieces)} simple ring(s) "
+                            f"of area {sum(g.area for g in pieces):.6g} (shoelace "
+                            f"{abs(signed_area(ring)):.6g})", src))
+    return [list(g.exterior.coords)[:-1] for g in pieces]
 
 
 def read_esicup(path: str) -> EsicupInstance:
@@ -79,12 +115,15 @@ def read_esicup(path: str) -> EsicupInstance:
     except (KeyError, TypeError, ValueError):
         raise InputError("not an ESICUP strip-packing instance (needs strip_height and items) "
                          "nor a bin-packing one (bins and items)", path) from None
-    parts = _items(path, items)
-    return EsicupInstance(name=str(data.get("name", "")), strip_height=height, parts=parts)
+    findings: List[Finding] = []
+    parts = _items(path, items, findings)
+    return EsicupInstance(name=str(data.get("name", "")), strip_height=height, parts=parts,
+                          findings=findings)
 
 
-def _items(path: str, items: Any, grade_of=None) -> List[Part]:
-    """Parts from the ``items`` list (``grade_of(item)``: the part's grade)."""
+def _items(path: str, items: Any, findings: List[Finding], grade_of=None) -> List[Part]:
+    """Parts from the ``items`` list (``grade_of(item)``: the part's grade;
+    repaired rings reported in ``findings``)."""
     parts: List[Part] = []
     if not isinstance(items, list):
         raise InputError("items must be a list", path)
@@ -96,11 +135,14 @@ def _items(path: str, items: Any, grade_of=None) -> List[Part]:
             kind = shape.get("type")
             holes: List[Contour] = []
             if kind == "simple_polygon":
-                outer = _contour(f"{iid}/outer", shape["data"], True)
+                outer = _contour(f"{iid}/outer",
+                                 _valid_rings(shape["data"], src, findings, True)[0], True)
             elif kind == "polygon":
-                outer = _contour(f"{iid}/outer", shape["data"]["outer"], True)
-                holes = [_contour(f"{iid}/hole{k}", r, False)
-                         for k, r in enumerate(shape["data"].get("inner", []))]
+                outer = _contour(f"{iid}/outer",
+                                 _valid_rings(shape["data"]["outer"], src, findings, True)[0], True)
+                holes = [_contour(f"{iid}/hole{len(holes)}", h, False)
+                         for k, r in enumerate(shape["data"].get("inner", []))
+                         for h in _valid_rings(r, f"{src} hole {k}", findings)]
             elif kind == "rectangle":
                 d = shape["data"]
                 x, y, w, h = (float(d[k]) for k in ("x_min", "y_min", "width", "height"))
@@ -119,8 +161,13 @@ def _items(path: str, items: Any, grade_of=None) -> List[Part]:
         regions = []
         for k, z in enumerate(it.get("zones") or []):
             try:
-                zo, _zi = _rings(z["shape"], f"{src} zone {k}")
-                regions.append((int(z["quality"]), _contour(f"{iid}/zone{k}", zo, True)))
+                zsrc = f"{src} zone {k}"
+                zo, zi = _rings(z["shape"], zsrc)
+                if zi:
+                    raise InputError("zones with holes are not supported", zsrc)
+                for n_r, r in enumerate(_valid_rings(zo, zsrc, findings)):
+                    regions.append((int(z["quality"]),
+                                    _contour(f"{iid}/zone{k}" + (f".{n_r}" if n_r else ""), r, True)))
             except InputError:
                 raise
             except (KeyError, TypeError, ValueError) as exc:
@@ -184,23 +231,30 @@ def _read_bins(path: str, data: Dict) -> EsicupInstance:
         m = it.get("min_quality")
         return full if m is None else int(m)
 
-    parts = _items(path, items, grade_of)
+    findings: List[Finding] = []
+    parts = _items(path, items, findings, grade_of)
     hides: List[Container] = []
     for n, b in enumerate(bins):
         src = f"{path}: bin {b.get('id', n)}"
         try:
             outer, inner = _rings(b["shape"], src)
             stock = int(b.get("stock", 1))
-            defects = [_ring_pts(_contour(f"{src}/hole{k}", r, True)) for k, r in enumerate(inner)]
+            defects = [_ring_pts(_contour(f"{src}/hole{k}", h, True)) for k, r in enumerate(inner)
+                       for h in _valid_rings(r, f"{src} hole {k}", findings)]
             zones = []
             for k, z in enumerate(b.get("zones", [])):
-                zo, _zi = _rings(z["shape"], src)
-                ring = _ring_pts(_contour(f"{src}/zone{k}", zo, True))
-                if int(z["quality"]) <= 0:
-                    defects.append(ring)
-                else:
-                    zones.append((int(z["quality"]), ring))
-            ring = _ring_pts(_contour(f"{src}/outer", outer, True))
+                zsrc = f"{src} zone {k}"
+                zo, zi = _rings(z["shape"], zsrc)
+                if zi:
+                    raise InputError("zones with holes are not supported", zsrc)
+                for r in _valid_rings(zo, zsrc, findings):
+                    ring = _ring_pts(_contour(f"{src}/zone{k}", r, True))
+                    if int(z["quality"]) <= 0:
+                        defects.append(ring)
+                    else:
+                        zones.append((int(z["quality"]), ring))
+            ring = _ring_pts(_contour(f"{src}/outer", _valid_rings(outer, src, findings, True)[0],
+                                      True))
         except InputError:
             raise
         except (KeyError, TypeError, ValueError) as exc:
@@ -212,4 +266,4 @@ def _read_bins(path: str, data: Dict) -> EsicupInstance:
     if not hides:
         raise InputError("instance has no bins", path)
     return EsicupInstance(name=str(data.get("name", "")), strip_height=None, parts=parts,
-                          hides=hides)
+                          hides=hides, findings=findings)
