@@ -159,21 +159,14 @@ def pair_depth(tx: float, ty: float, p: int, pts, start, count, ring_lo, ring_hi
             ay = pts[q, 1]
             by = ay + ey
             cr = ex * dy - ey * dx
-            if ay <= ty:
-                if by > ty and cr > 0.0:
-                    wind += 1
-            elif by <= ty and cr < 0.0:
-                wind -= 1
-            u = (dx * ex + dy * ey) * pts[q, 4]
-            if u < 0.0:
-                u = 0.0
-            elif u > 1.0:
-                u = 1.0
+            # winding number and clamped projection without branches (the
+            # crossing tests are unpredictable; measured faster)
+            wind += np.int64((ay <= ty) & (by > ty) & (cr > 0.0)) \
+                - np.int64((ay > ty) & (by <= ty) & (cr < 0.0))
+            u = min(max((dx * ex + dy * ey) * pts[q, 4], 0.0), 1.0)
             rx = ex * u - dx
             ry = ey * u - dy
-            d = rx * rx + ry * ry
-            if d < best:
-                best = d
+            best = min(best, rx * rx + ry * ry)
     if wind == 0:
         return 0.0
     return np.sqrt(best)
