@@ -215,3 +215,69 @@ def test_inflated_outlines_keep_half_the_spacing_at_corners():
         grown = Polygon(np.asarray(v.outer, dtype=float) / inst.scale)
         assert grown.contains(true)
         assert true.exterior.distance(grown.exterior) >= 0.25
+
+
+def test_depth_agrees_with_shapely_on_the_concave_pieces_of_fu():
+    # the branch-free winding test of pair_depth against an independent overlap test:
+    # every pair of fu's oriented pieces at random translations; near-contact cases skipped
+    from shapely.affinity import translate
+    from shapely.geometry import Polygon
+    parts, opts = _fu()
+    inst = _Instance(_loose_row(parts, opts, gap=1.0), parts, opts)
+    tab = PairTable(inst.variants)
+    poly = [Polygon(np.asarray(v.outer, dtype=float)) for v in inst.variants]
+    rng = np.random.default_rng(3)
+    checked = inside = 0
+    while checked < 400:
+        a, b = (int(k) for k in rng.integers(tab.n, size=2))
+        x0, y0, x1, y1 = tab.bbox[a * tab.n + b]
+        tx, ty = rng.uniform(x0, x1), rng.uniform(y0, y1)
+        moved = translate(poly[b], tx, ty)
+        d = pair_depth(tx, ty, a * tab.n + b, *tab.arrays())
+        gap = poly[a].distance(moved)
+        area = poly[a].intersection(moved).area
+        if gap > 50.0:
+            assert d == 0.0
+        elif area > 1e-3 * poly[b].area:
+            assert d > 0.0
+            if inside < 20:
+                # the depth is the shortest separating push: at most the shortest
+                # axis-aligned one (searched in 1 % steps of the pair's reach)
+                step = 0.01 * max(x1 - x0, y1 - y0)
+                s = next(k * step for k in range(1, 101)
+                         if any(not poly[a].intersects(translate(moved, dx, dy))
+                                for dx, dy in ((k * step, 0), (-k * step, 0), (0, k * step), (0, -k * step))))
+                assert d <= s + 1.0
+            inside += 1
+        else:
+            continue
+        checked += 1
+    assert inside > 50
+
+
+def test_separation_gives_up_when_asked_and_keeps_the_least_overlap():
+    parts, opts = _fu()
+    inst = _Instance(_loose_row(parts, opts, gap=1.0), parts, opts)
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
+                    inst.y1, inst.x0, inst.eps)
+    X, Y, V = inst.X.copy(), inst.Y.copy(), inst.V.copy()
+    x1 = inst.x0 + 0.3 * (inst.right_edge(X, V) - inst.x0)     # far too short: cannot succeed
+    X[:] = np.minimum(X, x1 - inst.cb[V, 2])
+    start = sep.overlaps(X, Y, V).sum()
+    asked = []
+    ok = sep.separate(X, Y, V, x1, time.monotonic() + 30.0, give_up=lambda: asked.append(1) or True)
+    assert not ok and len(asked) == 1                          # one sweep, then it stopped
+    assert 0.0 < sep.overlaps(X, Y, V).sum() <= start
+
+
+def test_engine_search_ends_at_its_plateau():
+    from LeatherCutWorkbench.core.nesting.strip_shrink import _Stall
+    seen = []
+    stall = _Stall(0.2, seen.append, None)
+    assert not stall.stop()                       # no layout yet: never stops
+    stall.on_best("layout")
+    assert not stall.stop() and seen == ["layout"]
+    time.sleep(0.3)
+    assert stall.stop()
+    user = _Stall(100.0, None, lambda: True)
+    assert user.stop()                            # the user's Stop always counts
