@@ -194,7 +194,9 @@ class AssignmentSearch:
         if unused and r < 0.75:
             p = rng.randrange(n)
             total = sum(net[h] for h in st.hides)
-            cands = [h for h in unused if total - net[st.hides[p]] + net[h] <= net_cap]
+            # strictly below the cap: after a step down the set must not drift
+            # back to the one that already held everything (Test5 did)
+            cands = [h for h in unused if total - net[st.hides[p]] + net[h] < net_cap]
             if not cands:
                 return new, []
             new.hides[p] = rng.choice(cands)
