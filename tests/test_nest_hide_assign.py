@@ -83,16 +83,16 @@ def test_odd_worker_searches_the_smallest_hides_right_after_its_first_fill():
     """Worker 1 on hides: after its first fill (largest hide first, every copy
     on hide 0) its next layout already lies on the smallest hide -- the
     copy-to-hide search starts on the k smallest hides, k the hides the first
-    fill used -- passes the checker, and the worker ends long before its
-    budget when no smaller set exists (it used to repeat worker 0's order
-    search for a third of the budget first)."""
+    fill used -- passes the checker, and the worker ends after a few fills
+    when no smaller set exists (it used to repeat worker 0's order search
+    for a third of the budget first)."""
     from LeatherCutWorkbench.core.nesting.search import Budget, run_search
     parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.8, 0.7, 0.75])
     seen = []
     t0 = time.monotonic()
     budget = Budget(t0 + 120.0, on_best=lambda c, order, pl: seen.append((c, order, pl)))
-    cost, order, placements, _evals = run_search(problem, copies, 1, 1, budget)
-    assert time.monotonic() - t0 < 60.0
+    cost, order, placements, evals = run_search(problem, copies, 1, 1, budget)
+    assert evals < 100          # no order search first (it made thousands of fills)
     assert len(seen) >= 2
     assert {b for (_si, b, _v, _x, _y) in seen[0][2]} == {0}     # first fill: the largest hide
     assert {b for (_si, b, _v, _x, _y) in seen[1][2]} == {1}     # then the smallest one
