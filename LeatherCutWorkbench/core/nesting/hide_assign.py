@@ -6,18 +6,23 @@ every hide, and no single move takes a copy from one hide to another.  On
 large parts (Baldacci Test2: 34 car-seat parts, five on a hide) it ends
 with one poorly filled hide and a hide set larger than needed.
 
-Here the hide set is fixed -- first the hides of the best layout so far --
-and each hide has its own sequence of copies, filled on its own by the
-bottom-left fill (a copy that does not fit that hide stays unplaced).  The
+Here the hide set is fixed -- first the k smallest hides, k the hides the
+worker's first fill used (:func:`search._assign_hides`) -- and each hide has
+its own sequence of copies, filled on its own by the bottom-left fill; a
+copy that does not fit its hide is then tried, in turn, at the end of the
+other hides' sequences (first fit across the set, :meth:`AssignmentSearch._spill`)
+and stays unplaced only when no hide has room.  The
 cost is the part area left unplaced over all hides: a smooth guide (like
 the strip search's shrunk strip) that is 0 exactly when the set holds every
 copy.  Once it does, one hide of the set is swapped for a smaller unused
-hide or dropped (a step down, as a strip is shrunk) and the search makes
+hide (each swap at most once from a set; a hide is dropped only when every
+swap was tried) -- a step down, as a strip is shrunk -- and the search makes
 that set hold every copy again.  Moves
 (late-acceptance hill climbing): move a copy (an unplaced one, mostly) to
 another hide, swap two copies of different hides, change one hide's
 sequence (:func:`search._mutate`), or exchange a hide of the set with an
-unused one while the set's net area stays below the best layout's.  A move
+unused one while the set's net area stays strictly below the last set
+that held every copy (5 % above the k smallest before there is one).  A move
 re-fills only the hides it touches, from the first changed position.
 
 Every state that leaves less area unplaced is reported (a knapsack: both
