@@ -45,11 +45,13 @@ def test_copies_move_off_an_over_full_hide_until_all_are_placed():
     s = _search(problem, 40.0)
     genes = [[(t, None) for t in sorted(copies, key=lambda t: -problem.type_area[t])], []]
     st = s.start([0, 1], genes)
-    assert st.lost[0] > 0 and st.lost[1] == 0       # everything queued on the small hide
+    # everything was queued on the small hide: what it left out went on to the
+    # other hide (first fit across the set, ``_spill``), out of its own sequence
+    assert st.genes[1] and len(st.genes[0]) + len(st.genes[1]) == len(copies)
+    assert len(st.traces[0].unplaced) == 0 and st.lost[0] == 0
     seen = []
     s.run(st, problem.hide_net, lambda state: seen.append(state.copy()),
           sum(problem.type_area[t] for t in copies))
-    assert seen[0].total > 0
     done = [x for x in seen if x.total == 0]
     assert done, "every copy placed on the two hides"
     seq, placements, order = as_layout(done[0])
@@ -75,3 +77,26 @@ def test_a_finished_set_is_shrunk_to_a_smaller_unused_hide():
     net = problem.hide_net
     done = [x for x in seen if x.total == 0]
     assert min(sum(net[h] for h in x.hides) for x in done) < net[0] + net[1]
+
+
+def test_odd_worker_searches_the_smallest_hides_right_after_its_first_fill():
+    """Worker 1 on hides: after its first fill (largest hide first, every copy
+    on hide 0) its next layout already lies on the smallest hide -- the
+    copy-to-hide search starts on the k smallest hides, k the hides the first
+    fill used -- passes the checker, and the worker ends after a few fills
+    when no smaller set exists (it used to repeat worker 0's order search
+    for a third of the budget first)."""
+    from LeatherCutWorkbench.core.nesting.search import Budget, run_search
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.8, 0.7, 0.75])
+    seen = []
+    t0 = time.monotonic()
+    budget = Budget(t0 + 120.0, on_best=lambda c, order, pl: seen.append((c, order, pl)))
+    cost, order, placements, evals = run_search(problem, copies, 1, 1, budget)
+    assert evals < 100          # no order search first (it made thousands of fills)
+    assert len(seen) >= 2
+    assert {b for (_si, b, _v, _x, _y) in seen[0][2]} == {0}     # first fill: the largest hide
+    assert {b for (_si, b, _v, _x, _y) in seen[1][2]} == {1}     # then the smallest one
+    assert {b for (_si, b, _v, _x, _y) in placements} == {1} and cost[0] == 0
+    lay = _to_layout(parts, types, variants, order, placements, opts, scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1

@@ -6,18 +6,23 @@ every hide, and no single move takes a copy from one hide to another.  On
 large parts (Baldacci Test2: 34 car-seat parts, five on a hide) it ends
 with one poorly filled hide and a hide set larger than needed.
 
-Here the hide set is fixed -- first the hides of the best layout so far --
-and each hide has its own sequence of copies, filled on its own by the
-bottom-left fill (a copy that does not fit that hide stays unplaced).  The
+Here the hide set is fixed -- first the k smallest hides, k the hides the
+worker's first fill used (:func:`search._assign_hides`) -- and each hide has
+its own sequence of copies, filled on its own by the bottom-left fill; a
+copy that does not fit its hide is then tried, in turn, at the end of the
+other hides' sequences (first fit across the set, :meth:`AssignmentSearch._spill`)
+and stays unplaced only when no hide has room.  The
 cost is the part area left unplaced over all hides: a smooth guide (like
 the strip search's shrunk strip) that is 0 exactly when the set holds every
 copy.  Once it does, one hide of the set is swapped for a smaller unused
-hide or dropped (a step down, as a strip is shrunk) and the search makes
+hide (each swap at most once from a set; a hide is dropped only when every
+swap was tried) -- a step down, as a strip is shrunk -- and the search makes
 that set hold every copy again.  Moves
 (late-acceptance hill climbing): move a copy (an unplaced one, mostly) to
 another hide, swap two copies of different hides, change one hide's
 sequence (:func:`search._mutate`), or exchange a hide of the set with an
-unused one while the set's net area stays below the best layout's.  A move
+unused one while the set's net area stays strictly below the last set
+that held every copy (5 % above the k smallest before there is one).  A move
 re-fills only the hides it touches, from the first changed position.
 
 Every state that leaves less area unplaced is reported (a knapsack: both
@@ -81,6 +86,7 @@ class AssignmentSearch:
         self.mutate = mutate
         self.expired = expired
         self.area = problem.type_area
+        self.net = problem.hide_net
         self.evals = 0
 
     # ----------------------------------------------------------------- fills
@@ -109,7 +115,49 @@ class AssignmentSearch:
         for p in range(len(hides)):
             if not self._fill(st, p, 0, float("inf")):
                 return None
+        self._spill(st, range(len(hides)))
         return st
+
+    def _spill(self, st: _Hides, touched) -> None:
+        """First fit across the set: each copy a fill of a ``touched`` hide left
+        out (largest first) is appended, free to turn, to the first other hide
+        (most net area not yet covered first) whose fill places it in a gap,
+        and leaves its own sequence.  Without it a copy that misses its hide
+        stays unplaced although another hide has room (Baldacci Test5: the
+        search stalled with 6-8 M units^2 left out on 11 hides where the order
+        search's first fit places everything)."""
+        lost = sorted(((p, si) for p in set(touched) if st.traces[p] is not None
+                       for si in st.traces[p].unplaced),
+                      key=lambda x: -self.area[st.genes[x[0]][x[1]][0]])
+        if not lost or len(st.hides) < 2:
+            return
+        pl = self.placer
+        saved = pl.bin_order, pl.max_bins
+        gone: dict = {}
+        try:
+            for p, si in lost:
+                if self.expired():
+                    break
+                g = (st.genes[p][si][0], None)
+                free = {q: self.net[st.hides[q]] - sum(
+                    self.area[x[0]] for x in st.genes[q]) for q in range(len(st.hides))}
+                for q in sorted(free, key=lambda q: -free[q]):
+                    if q == p or st.traces[q] is None:
+                        continue
+                    pl.bin_order, pl.max_bins = [st.hides[q]], 1
+                    seq = st.genes[q] + [g]
+                    tr = pl.place(seq, st.traces[q], len(st.genes[q]))
+                    self.evals += 1
+                    if tr is not None and tr.placements[-1][1] >= 0:
+                        st.genes[q], st.traces[q] = seq, tr
+                        gone.setdefault(p, []).append(si)
+                        break
+        finally:
+            pl.bin_order, pl.max_bins = saved
+        for p, out in gone.items():
+            for si in sorted(out, reverse=True):
+                _drop_unplaced(st, p, si)
+            st.lost[p] = sum(self.area[st.genes[p][k][0]] for k in st.traces[p].unplaced)
 
     # ----------------------------------------------------------------- moves
     def _neighbour(self, st: _Hides, net: Sequence[float], net_cap: float,
@@ -151,7 +199,9 @@ class AssignmentSearch:
         if unused and r < 0.75:
             p = rng.randrange(n)
             total = sum(net[h] for h in st.hides)
-            cands = [h for h in unused if total - net[st.hides[p]] + net[h] <= net_cap]
+            # strictly below the cap: after a step down the set must not drift
+            # back to the one that already held everything (Test5 did)
+            cands = [h for h in unused if total - net[st.hides[p]] + net[h] < net_cap]
             if not cands:
                 return new, []
             new.hides[p] = rng.choice(cands)
@@ -181,28 +231,30 @@ class AssignmentSearch:
         low = cur.total
         cap = self._cap(cur, net)
         on_better(cur)
-        step = since = 0
+        step = since = spent = 0
         frac = STEP
         last_done: Optional[_Hides] = None       # the last set that held every copy
+        tried: set = set()                       # step-down moves tried from last_done
         while not self.expired():
             since += 1
+            spent += 1
             if cur.total < low:
                 low, since = cur.total, 0
                 on_better(cur)
-            if last_done is not None and since > PATIENCE:
+            if last_done is not None and (since > PATIENCE or spent > 4 * PATIENCE):
                 cur, since, frac = last_done, 0, max(frac / 2.0, MIN_STEP)
             if cur.total == 0:
                 if cur is not last_done:
                     frac = min(frac * 1.5, MAX_STEP) if last_done is not None else frac
-                    last_done = cur
-                nxt = self._smaller(cur, net, frac, item_area)
+                    last_done, tried = cur, set()
+                nxt = self._smaller(cur, net, frac, item_area, tried)
                 if nxt is None:
                     return
                 cap = sum(net[h] for h in cur.hides)
                 cur = nxt
                 hist = [cur.total] * history
                 low = cur.total
-                since = 0
+                since = spent = 0
                 on_better(cur)
             unused = [h for h in range(len(net)) if h not in set(cur.hides)]
             new, todo = self._neighbour(cur, net, cap, unused)
@@ -226,6 +278,7 @@ class AssignmentSearch:
             if not self._fill(new, p, first, accept - spent + 1e-6):
                 return False
             spent += new.lost[p]
+        self._spill(new, touched)
         return True
 
     @staticmethod
@@ -234,32 +287,52 @@ class AssignmentSearch:
         return (1.0 + SLACK) * sum(sorted(net)[:len(st.hides)])
 
     def _smaller(self, st: _Hides, net: Sequence[float], frac: float,
-                 item_area: float) -> Optional[_Hides]:
+                 item_area: float, tried: set) -> Optional[_Hides]:
         """A set of less net area than ``st``'s, re-filled: one hide swapped
-        for a smaller unused one, or one hide dropped (its copies spread over
-        the others, unplaced) while the copies fill at most ``MAX_FILL`` of
-        the rest -- the change whose loss of net area is nearest to ``frac``
-        x the set's (one of the two nearest).  None: nothing smaller."""
+        for a smaller unused one, or -- once every such swap was ``tried``
+        from ``st`` -- one hide dropped (its copies spread over the others,
+        unplaced) while the copies fill at most ``MAX_FILL`` of the rest.
+        Among the untried swaps the one whose loss of net area is nearest to
+        ``frac`` x the set's (the move is added to ``tried``).  None: nothing
+        smaller left.  (Drops came first when their loss was nearer: on Test5
+        the search then spent its time on 10 hides that cannot hold the
+        copies instead of the 11-hide swaps that can.)"""
         used = set(st.hides)
         total = sum(net[h] for h in st.hides)
         moves = [(net[h] - net[u], p, u) for p, h in enumerate(st.hides)
-                 for u in range(len(net)) if u not in used and net[u] < net[h]]
-        if len(st.hides) > 1:
-            moves += [(net[h], p, -1) for p, h in enumerate(st.hides)
-                      if item_area <= MAX_FILL * (total - net[h])]
+                 for u in range(len(net)) if u not in used and net[u] < net[h]
+                 and (h, u) not in tried]
+        if not moves and len(st.hides) > 1:
+            moves = [(net[h], p, -1) for p, h in enumerate(st.hides)
+                     if item_area <= MAX_FILL * (total - net[h]) and (h, -1) not in tried]
         if not moves:
             return None
         moves.sort(key=lambda m: abs(m[0] - frac * total))
-        _loss, p, u = self.rng.choice(moves[:2])
+        _loss, p, u = moves[0]
+        tried.add((st.hides[p], u))
         if u >= 0:
             new = st.copy()
             new.hides[p] = u
             new.traces[p] = None
-            return new if self._fill(new, p, 0, float("inf")) else None
+            if not self._fill(new, p, 0, float("inf")):
+                return None
+            self._spill(new, [p])
+            return new
         hides = [h for q, h in enumerate(st.hides) if q != p]
         genes = [list(g) for q, g in enumerate(st.genes) if q != p]
         _spread(genes, st.genes[p], hides, self.area, net)
         return self.start(hides, genes)
+
+
+def _drop_unplaced(st: _Hides, p: int, k: int) -> None:
+    """Remove gene ``k`` -- one the fill left out -- from position ``p``'s
+    sequence and trace (a copy left out changed no hide state, so the later
+    placements stand; their sequence indices shift down by one)."""
+    tr = st.traces[p]
+    del st.genes[p][k]
+    st.traces[p] = Trace([(si - (si > k), b, vi, tx, ty)
+                          for (si, b, vi, tx, ty) in tr.placements if si != k],
+                         tr.states[:k + 1] + tr.states[k + 2:])
 
 
 def _spread(genes: List[List[Gene]], rest: Sequence[Gene], hides: Sequence[int],

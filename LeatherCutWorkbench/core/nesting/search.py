@@ -220,9 +220,10 @@ class Budget:
 
 
 def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker: int,
-                 budget: Budget):
+                 budget: Budget, quick: bool = False):
     """The worker's first layout (its own start order, never abandoned), then
-    the other start orders while they are cheap; returns (cost, order, trace, evals)."""
+    the other start orders while they are cheap; returns (cost, order, trace, evals).
+    ``quick`` (always on worker 0): the first fill tries four orientations only."""
     starts = start_orders(problem, copies)
     k = worker % len(starts)
     starts = starts[k:] + starts[:k]
@@ -233,7 +234,8 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     placer.clock.stop = budget.stop
     placer.clock.exact_until = budget.first_fill_until
     # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
-    tr = placer.place(starts[0], abortable=False, variant_cap=4 if worker == 0 else None)
+    tr = placer.place(starts[0], abortable=False,
+                      variant_cap=4 if worker == 0 or quick else None)
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly
@@ -290,9 +292,19 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         # smallest hides in a first fill); the best worker wins
         placer.gravity = "y" if worker % 2 == 1 else "x"
     rng = random.Random(seed * 1000003 + worker)
-    best, evals = _first_fills(problem, placer, copies, worker, budget)
+    # odd workers on hides: a quick first fill, then the copy-to-hide search
+    # on the smallest hides (see _assign_hides)
+    assign = choose_hides and worker % 2 == 1 and problem.assign_hides
+    best, evals = _first_fills(problem, placer, copies, worker, budget, quick=assign)
     cur_cost, cur_seq, cur_pl = best
     cur_hides = best_hides = placer.bin_order
+    if assign:
+        if not budget.done(evals):
+            k = len(used_positions(cur_pl.placements))
+            seed_hides = tight_order(problem.hide_net, k)[:k]
+            best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
+                                                    best_hides, evals, seed_hides)
+        return best[0], best[1], _out(best[2].placements, best_hides), evals
     if worker % 2 == 1 and len(copies) > 1 and not budget.done(evals):
         seq = list(cur_seq)                   # diversify the second worker's start
         rng.shuffle(seq)
@@ -317,16 +329,9 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
                     if c < best[0]:
                         best, best_hides = (c, cur_seq, tr), order
                         budget.improved(c, cur_seq, _out(tr.placements, order))
-    # odd workers on hides: the order search for ORDER_SHARE of the time left,
-    # then the copy-to-hide search from its best layout (even workers: the
-    # order search throughout -- on Test2 it finds its best set in 15-30 s,
-    # which the copy-to-hide search did not improve in the rest of 60 s)
-    assign = choose_hides and worker % 2 == 1 and problem.assign_hides
-    switch = time.monotonic() + ORDER_SHARE * max(budget.t_end - time.monotonic(), 0.0)
     hist = [cur_cost] * history
     step = 0
-    while (len(copies) > 1 or choose_hides) and not budget.done(evals) and \
-            not (assign and time.monotonic() > switch):
+    while (len(copies) > 1 or choose_hides) and not budget.done(evals):
         budget.check_cancel(evals, best[0])
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
@@ -360,28 +365,24 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
                     budget.improved(c, new_seq, _out(new_pl.placements, new_hides))
         if cur_cost < h:
             hist[slot] = cur_cost
-    if assign and not budget.done(evals):
-        best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best, best_hides,
-                                                evals)
     return best[0], best[1], _out(best[2].placements, best_hides), evals
 
 
-#: odd workers on hides: share of the time after the first fills spent on
-#: the order search before the copy-to-hide search takes over
-ORDER_SHARE = 0.35
-
-
 def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: Budget,
-                  best, best_hides: List[int], evals: int):
-    """Hides, odd workers after the order search: the copy-to-hide search of
-    :mod:`hide_assign`, from the hides the best layout uses, until the deadline.  Returns the best (cost, order, trace), its
-    hide order and the evaluations."""
+                  best, best_hides: List[int], evals: int, hides: List[int]):
+    """Hides, odd workers right after a quick first fill: the copy-to-hide
+    search of :mod:`hide_assign` on ``hides`` -- the k smallest, k the hides
+    the first fill used: the best utilisation k hides can give; the search may
+    swap in hides up to 5 % more net area while copies are left over -- until
+    the deadline.  The even workers' order search meanwhile finds complete
+    sets from the largest hides down (on Test2 and Test10 the odd worker's own
+    order search made only 5-10 fills in 30-45 s: every orientation of large
+    parts, exactly, and repeated what the even worker did).  Returns the best
+    (cost, order, trace), its hide order and the evaluations."""
     from .blf import Trace
     from .hide_assign import AssignmentSearch, as_layout, from_layout
     net = problem.hide_net
     item_area = sum(problem.type_area[g[0]] for g in best[1])
-    # the hides the best layout uses: the search then shrinks that set hide by hide
-    hides = [best_hides[b] for b in used_positions(best[2].placements)]
     genes = from_layout(best[2].placements, best[1], best_hides, hides, problem.type_area, net)
     holder = [best, best_hides]
 
