@@ -98,6 +98,15 @@ def _valid_rings(pts: Sequence[Sequence[float]], src: str, findings: List[Findin
     return [list(g.exterior.coords)[:-1] for g in pieces]
 
 
+def _zone_rings(zone: Dict, src: str, findings: List[Finding]) -> List[list]:
+    """The simple rings of a zone (item or hide) with ``_valid_rings``; a zone
+    with holes raises InputError (no zone model keeps them)."""
+    outer, inner = _rings(zone["shape"], src)
+    if inner:
+        raise InputError("zones with holes are not supported", src)
+    return _valid_rings(outer, src, findings)
+
+
 def read_esicup(path: str) -> EsicupInstance:
     """Read an instance file; errors name the file and the item."""
     try:
@@ -161,11 +170,7 @@ def _items(path: str, items: Any, findings: List[Finding], grade_of=None) -> Lis
         regions = []
         for k, z in enumerate(it.get("zones") or []):
             try:
-                zsrc = f"{src} zone {k}"
-                zo, zi = _rings(z["shape"], zsrc)
-                if zi:
-                    raise InputError("zones with holes are not supported", zsrc)
-                for n_r, r in enumerate(_valid_rings(zo, zsrc, findings)):
+                for n_r, r in enumerate(_zone_rings(z, f"{src} zone {k}", findings)):
                     regions.append((int(z["quality"]),
                                     _contour(f"{iid}/zone{k}" + (f".{n_r}" if n_r else ""), r, True)))
             except InputError:
@@ -243,11 +248,7 @@ def _read_bins(path: str, data: Dict) -> EsicupInstance:
                        for h in _valid_rings(r, f"{src} hole {k}", findings)]
             zones = []
             for k, z in enumerate(b.get("zones", [])):
-                zsrc = f"{src} zone {k}"
-                zo, zi = _rings(z["shape"], zsrc)
-                if zi:
-                    raise InputError("zones with holes are not supported", zsrc)
-                for r in _valid_rings(zo, zsrc, findings):
+                for r in _zone_rings(z, f"{src} zone {k}", findings):
                     ring = _ring_pts(_contour(f"{src}/zone{k}", r, True))
                     if int(z["quality"]) <= 0:
                         defects.append(ring)
