@@ -71,9 +71,6 @@ class Problem:
     hide_net: Optional[List[float]] = None
     #: hides: :class:`part_regions.RegionCheck` for parts with graded regions
     region_check: Optional[object] = None
-    #: hides: odd workers search which copy goes on which hide
-    #: (:mod:`hide_assign`) instead of the fill order
-    assign_hides: bool = True
 
     def placer(self) -> Placer:
         return Placer(self.variants, self.type_variants, self.type_grade, self.bins,
@@ -294,7 +291,7 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     rng = random.Random(seed * 1000003 + worker)
     # odd workers on hides: a quick first fill, then the copy-to-hide search
     # on the smallest hides (see _assign_hides)
-    assign = choose_hides and worker % 2 == 1 and problem.assign_hides
+    assign = choose_hides and worker % 2 == 1
     best, evals = _first_fills(problem, placer, copies, worker, budget, quick=assign)
     cur_cost, cur_seq, cur_pl = best
     cur_hides = best_hides = placer.bin_order

@@ -344,7 +344,7 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
         return run_own(parts, options, progress, on_best, stop)
     share = SHEET_SEARCH_SHARE if kind == "sheet" else _search_share(parts)
     first = dataclasses.replace(options, time_budget=options.time_budget * share)
-    if kind == "strip" and STALL_SHARE > 0:
+    if kind == "strip":
         stall = _Stall(max(STALL_MIN_S, STALL_SHARE * options.time_budget), on_best, stop)
         layout = run_own(parts, first, progress, stall.on_best, stall.stop)
         layout.metrics["stopped"] = bool(stop is not None and stop())
