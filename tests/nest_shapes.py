@@ -42,3 +42,21 @@ def frame(pid: str, w: float, h: float, t: float, q: int = 1) -> Part:
     hole = poly_contour(pid + "/h", [(t, t), (t, h - t), (w - t, h - t), (w - t, t)])
     return Part(id=pid, outer=poly_contour(pid + "/o", [(0, 0), (w, 0), (w, h), (0, h)]),
                 holes=[hole], quantity=q, rotations=[0.0])
+
+
+def write_hide_dxf(path: str, size: Tuple[float, float], hide_layer: str, zone_layer: str,
+                   zone: Tuple[float, float, float, float]) -> None:
+    """A rectangular hide (``size`` = w x h mm, from the origin) on ``hide_layer``
+    with one rectangular zone (x0, y0, x1, y1) on ``zone_layer``, as a DXF."""
+    import ezdxf
+    doc = ezdxf.new(units=4)
+    msp = doc.modelspace()
+    for name in (hide_layer, zone_layer):
+        doc.layers.add(name)
+    w, h = size
+    x0, y0, x1, y1 = zone
+    msp.add_lwpolyline([(0, 0), (w, 0), (w, h), (0, h)], close=True,
+                       dxfattribs={"layer": hide_layer})
+    msp.add_lwpolyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], close=True,
+                       dxfattribs={"layer": zone_layer})
+    doc.saveas(path)

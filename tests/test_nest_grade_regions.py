@@ -14,6 +14,7 @@ from LeatherCutWorkbench.core.model import Container, Layout, Placement
 from LeatherCutWorkbench.core.nesting import check_layout
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 
+from nest_shapes import write_hide_dxf
 from test_nest_cli import run_json
 
 DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
@@ -36,15 +37,7 @@ def _shoe_dxf(path):
 
 def _hide_dxf(path):
     """A 600 x 300 hide of base grade B with one 120 x 100 grade-A zone."""
-    doc = ezdxf.new(units=4)
-    msp = doc.modelspace()
-    for name in ("HIDE_B", "ZONE_A"):
-        doc.layers.add(name)
-    msp.add_lwpolyline([(0, 0), (600, 0), (600, 300), (0, 300)], close=True,
-                       dxfattribs={"layer": "HIDE_B"})
-    msp.add_lwpolyline([(420, 150), (540, 150), (540, 250), (420, 250)], close=True,
-                       dxfattribs={"layer": "ZONE_A"})
-    doc.saveas(path)
+    write_hide_dxf(path, (600, 300), "HIDE_B", "ZONE_A", (420, 150, 540, 250))
 
 
 def test_dxf_region_lies_on_grade_a_and_is_not_cut(capsys, tmp_path):

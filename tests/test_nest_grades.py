@@ -9,6 +9,7 @@ from LeatherCutWorkbench.cli import main
 from LeatherCutWorkbench.core.dxfimport.grades import grade_of_layer, grade_of_text, parse_grade
 from LeatherCutWorkbench.core.errors import InputError
 
+from nest_shapes import write_hide_dxf
 from test_nest_cli import run_json
 
 
@@ -37,15 +38,7 @@ def _parts_dxf(path):
 
 def _hide_dxf(path):
     """A 400 x 200 hide of base grade 1 with a grade-A (4) zone on its left half."""
-    doc = ezdxf.new(units=4)
-    msp = doc.modelspace()
-    for name in ("HIDE", "ZONE_A"):
-        doc.layers.add(name)
-    msp.add_lwpolyline([(0, 0), (400, 0), (400, 200), (0, 200)], close=True,
-                       dxfattribs={"layer": "HIDE"})
-    msp.add_lwpolyline([(0, 0), (150, 0), (150, 200), (0, 200)], close=True,
-                       dxfattribs={"layer": "ZONE_A"})
-    doc.saveas(path)
+    write_hide_dxf(path, (400, 200), "HIDE", "ZONE_A", (0, 0, 150, 200))
 
 
 def test_dxf_grades_and_cli_override_decide_where_parts_lie(capsys, tmp_path):
