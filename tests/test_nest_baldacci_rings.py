@@ -96,13 +96,18 @@ def test_first_fill_gives_up_within_the_promised_end():
     to its last resort at 1.5 T + 2 s: 18 s at T = 10, against the promised
     T + 10 % + 1 s.  The last resort now leaves the final check's reserve
     inside the promise, and still comes after the search end."""
-    from LeatherCutWorkbench.core.nesting.engine import _deadlines
+    from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions
+    from LeatherCutWorkbench.core.nesting.engine import _deadlines, _reserve
+    from LeatherCutWorkbench.core.nesting.tail import Tail
     for budget in (1.0, 10.0, 60.0):
         for n in (5, 58, 280):
-            t_end, _quick, _slow, boxes, give_up = _deadlines(100.0, budget, n, hides=True)
-            reserve = 100.0 + budget - t_end
-            assert t_end < give_up <= 100.0 + 1.1 * budget + 1.0 - min(reserve, 0.25 * budget + 0.5)
-            assert boxes == t_end
+            for per_copy in (None, 0.001, 0.05):      # not measured, fast, slow check
+                tail = Tail([], NestOptions(container=ContainerSpec.sheet(100, 100)))
+                tail.per_copy = per_copy
+                reserve = _reserve(budget, n, tail)
+                t_end, _quick, _slow, boxes, give_up = _deadlines(100.0, budget, reserve, hides=True)
+                assert t_end <= give_up <= 100.0 + 1.1 * budget + 1.0 - reserve
+                assert t_end < 100.0 + budget and boxes == t_end
 
 
 def test_finely_flattened_hide_edges_are_simplified_inside_the_material():

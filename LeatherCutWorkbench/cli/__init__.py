@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional
@@ -36,6 +37,9 @@ class Report:
     exit_code: int = 0
     extra: List[str] = field(default_factory=list)
     rows: bool = False    # JSON: one line per part / flag (cli/json_rows.py), for large reports
+    #: the console script ends with ``os._exit`` once the report is printed (every
+    #: file the verb wrote is closed): no interpreter clean-up of a large heap
+    quick_exit: bool = False
 
 
 def add_common_options(p: argparse.ArgumentParser) -> None:
@@ -95,13 +99,13 @@ def _json_default(o: Any) -> Any:
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Console entry point.  Returns (and exits with) the exit code."""
-    code = _main(argv)
+    code = _main(argv, quick_exit=argv is None)
     if argv is None:
         sys.exit(code)
     return code
 
 
-def _main(argv: Optional[List[str]]) -> int:
+def _main(argv: Optional[List[str]], quick_exit: bool = False) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     func: Callable[[argparse.Namespace], Report] = args.func
@@ -124,4 +128,8 @@ def _main(argv: Optional[List[str]]) -> int:
     print_report(report, getattr(args, "json", False))
     for line in report.extra:
         print(line, file=sys.stderr)
+    if quick_exit and report.quick_exit:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(report.exit_code)
     return report.exit_code

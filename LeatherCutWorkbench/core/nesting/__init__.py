@@ -65,18 +65,16 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
     if len(set(ids)) != len(ids):
         dup = sorted({i for i in ids if ids.count(i) > 1})
         raise InputError(f"part ids must be unique, repeated: {', '.join(dup[:5])}")
-    if options.engine == "sparrow":
-        from .sparrow_engine import run_sparrow
-        layout = run_sparrow(active, options, progress)
-    else:
-        from .strip_shrink import nest_compacted     # the engine, then the strip phase
-        layout = nest_compacted(active, options, progress, on_best, stop)
-    report(progress, 0.99, "checking the layout")
-    problems = check_layout(active, layout, spacing=options.spacing, margin=options.margin,
-                            tol=options.tolerance, chord_tol=options.chord_tol,
-                            rotations_override=options.rotations_override,
-                            mirror_override=options.mirror_override,
-                            free_rotation=options.free_rotation)
+    from .tail import session
+    with session(active, options) as tail:
+        if options.engine == "sparrow":
+            from .sparrow_engine import run_sparrow
+            layout = run_sparrow(active, options, progress)
+        else:
+            from .strip_shrink import nest_compacted     # the engine, then the strip phase
+            layout = nest_compacted(active, options, progress, on_best, stop)
+        report(progress, 0.99, "checking the layout")
+        problems = tail.check(active, layout, options)   # once: the strip phase's verdict is kept
     if problems:
         _drop_invalid(active, layout, problems, options)
     layout.metrics["checked"] = True

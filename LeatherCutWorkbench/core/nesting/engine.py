@@ -33,6 +33,7 @@ from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part, to_grid
+from .tail import Tail, current
 
 #: The grid resolution: the largest container or part dimension spans this many units.
 GRID_UNITS = 2.0e6
@@ -132,28 +133,41 @@ def _workers(options: NestOptions) -> int:
 _GRACE_S = 0.3
 
 
-def _deadlines(t_start: float, budget: float, n_copies: int, hides: bool = False
-               ) -> Tuple[float, float, float, float, float]:
+def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = False,
+               promised: Optional[float] = None) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
-    fill's last resort end: T + 10 % + 1 s, the promised end, less twice that
-    reserve (the placement step under way when it passes, then the final
+    fill's last resort end: T + 10 % + 1 s, the promised end (``promised``:
+    that of the whole nest when this search has only a share of it), less twice
+    ``reserve`` (the placement step under way when it passes, then the final
     build and check); only a machine too loaded even for box-only no-fit
     polygons ever leaves copies unplaced for lack of time -- it was 1.5 T + 2 s,
-    and Baldacci Test5 / Test6 then took 18-19 s at T = 10 under load).
+    and Baldacci Test5 / Test6 then took 18-19 s at T = 10 under load); never
+    before the search end.
 
-    The search ends early enough for the final check and layout building
-    (about 4 ms per copy) to fit in the budget too.  Worker 0 switches its first
+    The search ends ``reserve`` seconds before T (:func:`_reserve`: the
+    workers' shutdown, then the final build, check, outputs and exit).
+    Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
     within a second or two; the others fill exactly for up to 40 % of T (hides:
     70 %: a coarse fill on hides of concave leather parts wastes whole hides)."""
     if budget <= 0:
         return math.inf, math.inf, math.inf, math.inf, math.inf
-    reserve = min(0.05 * budget, 0.5) + min(0.004 * n_copies, 0.25 * budget)
     t_end = t_start + max(budget - reserve, 0.5 * budget)
     quick = t_start + min(max(1.0, 0.05 * budget), 0.5 * budget)
     slow = t_start + (0.7 if hides else 0.4) * budget
-    return t_end, quick, slow, t_end, t_start + 1.1 * budget + 1.0 - 2.0 * reserve
+    if promised is None:
+        promised = t_start + 1.1 * budget + 1.0
+    return t_end, quick, slow, t_end, max(promised - 2.0 * reserve, t_end)
+
+
+def _reserve(budget: float, n_copies: int, tail: Tail) -> float:
+    """Seconds the search leaves free at the end of ``budget``: the workers'
+    shutdown (``_GRACE_S`` and joining them: min(5 % T, 0.5 s)) and
+    :meth:`Tail.reserve` (measured build and check, outputs, exit), that
+    at most 40 % of the budget (so the first fill's last resort still comes
+    after the search end and the tail fits in T + 10 % + 1 s)."""
+    return min(0.05 * budget, 0.5) + min(tail.reserve(n_copies), 0.4 * budget)
 
 
 class _Best:
@@ -242,8 +256,11 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     n_workers = _workers(options)
     budget = options.time_budget
-    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget, len(copies),
-                                                 options.container.kind == "hide")
+    tail = current(parts, options)
+    t_end, quick, slow, boxes, hard = _deadlines(t_start, budget,
+                                                 _reserve(budget, len(copies), tail),
+                                                 options.container.kind == "hide",
+                                                 tail.promised_end())
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 
@@ -252,6 +269,21 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     def build(order, placements) -> Layout:
         return _to_layout(parts, types, variants, order, placements, options, scale, hides)
+
+    ends: List[float] = []
+
+    def measured_end(first_best) -> float:
+        """The search end once the tail's cost is measured on the first layout
+        (its build and check, timed while the workers search on)."""
+        if not ends:
+            if budget > 0 and tail.per_copy is None:
+                t = time.monotonic()
+                layout = build(first_best[1], first_best[2])
+                tail.note_build(time.monotonic() - t, len(layout.placements))
+                tail.check(parts, layout, options)
+            ends.append(min(t_end, _deadlines(t_start, budget,
+                                              _reserve(budget, len(copies), tail))[0]))
+        return ends[0]
 
     best = _Best(summary, on_best, build)
 
@@ -265,13 +297,17 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             best.publish()
             return progress is None or progress(frac(), best.message()) is not False
 
-        b = Budget(t_end, quick, max_eval, stop, lambda c, o, p: best.offer(0, c, o, p), tick,
-                   hard_stop=boxes, give_up_at=hard)
+        def offer(c, o, p) -> None:
+            best.offer(0, c, o, p)
+            b.t_end = measured_end(best.best)
+
+        b = Budget(t_end, quick, max_eval, stop, offer, tick, hard_stop=boxes, give_up_at=hard)
         evaluations = search(problem, copies, options.seed, 0, b)[3]
         workers_used = 1
     else:
         evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end,
-                                (quick, slow, boxes, hard), max_eval, best, progress, frac, stop)
+                                (quick, slow, boxes, hard), max_eval, best, progress, frac, stop,
+                                measured_end)
         workers_used = n_workers
     best.publish(force=True)
     cost, order, placements, _ = best.best
@@ -332,10 +368,12 @@ def _closable_stdin() -> Iterator[None]:
 
 def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: float,
               fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
-              progress: Optional[ProgressFn], frac, stop) -> int:
+              progress: Optional[ProgressFn], frac, stop,
+              measured_end: Callable[[tuple], float]) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
     deadline (or on Stop): the wall time holds whatever a worker is doing.
+    The deadline moves to ``measured_end(first best)`` once a layout exists.
     Returns the evaluations the workers reported."""
     with _closable_stdin():
         ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
@@ -353,6 +391,8 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: flo
         try:
             while len(done) + len(errors) < n:
                 _drain(queue, best, done, errors, timeout=0.05)
+                if best.best is not None:
+                    t_end = measured_end(best.best)
                 best.publish()
                 report(progress, frac(), best.message())
                 if stop is not None and stop() and best.best is not None:

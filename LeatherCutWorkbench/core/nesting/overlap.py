@@ -69,10 +69,10 @@ class PairTable:
         self.complete = True
         rings: List[List[np.ndarray]] = [[] for _ in range(n * n)]
         for a in range(n):
-            if time.monotonic() > deadline:
-                self.complete = False
-                break
             for b in range(a, n):
+                if time.monotonic() > deadline:     # per pair: one row can take seconds
+                    self.complete = False
+                    break
                 paths = pair_nfp(variants[a], variants[b])
                 if a != b and (variants[a].holes or variants[b].holes):
                     # pair_nfp cuts out only a's holes (b inside a); -NFP(b, a) cuts
@@ -87,6 +87,8 @@ class PairTable:
                 rings[a * n + b] = rs
                 # NFP(b, a) = -NFP(a, b); negating keeps each ring's orientation
                 rings[b * n + a] = [-r for r in rs]
+            if not self.complete:
+                break
         starts, counts, lo, hi, chunks = [], [], [], [], []
         bbox = np.zeros((n * n, 4))
         off = 0

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..model import Container, Layout, Part, Placement
 from ..progress import ProgressFn, report
-from .checker import check_layout
+from . import tail
 from .options import ContainerSpec, NestOptions
 try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
     from .overlap import PairTable
@@ -337,13 +337,16 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     driven by the clock.  Without numba the engine also runs alone.  ``on_best``
     and ``stop`` are the engine's (best layout so far; *Stop* keeps it)."""
     from .engine import run_own
-    t0 = time.monotonic()
+    t0 = options.started_at if options.started_at is not None else time.monotonic()
     kind = options.container.kind
     if kind not in ("strip", "sheet") or options.max_evaluations is not None \
             or options.time_budget <= 0 or PairTable is None:
         return run_own(parts, options, progress, on_best, stop)
     share = SHEET_SEARCH_SHARE if kind == "sheet" else _search_share(parts)
-    first = dataclasses.replace(options, time_budget=options.time_budget * share)
+    # the share splits the time left after reading the drawing (counted from t0)
+    spent = min(max(time.monotonic() - t0, 0.0), options.time_budget)
+    first = dataclasses.replace(options, time_budget=spent + (options.time_budget - spent) * share)
+    first.started_at = t0                 # replace() drops it
     if kind == "strip":
         stall = _Stall(max(STALL_MIN_S, STALL_SHARE * options.time_budget), on_best, stop)
         layout = run_own(parts, first, progress, stall.on_best, stall.stop)
@@ -353,7 +356,11 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     if stop is not None and stop():
         return layout
     phase = improve_strip if kind == "strip" else improve_last_sheet
-    better = phase(layout, parts, options, t0 + options.time_budget, progress, stop)
+    # the phase leaves the tail's time free: its own check of the result (two
+    # rounds of build and check on sheets), then the outputs and the exit
+    copies = len(layout.placements) + len(layout.unplaced)
+    end = t0 + options.time_budget - tail.current(parts, options).reserve(copies, rounds=2)
+    better = phase(layout, parts, options, end, progress, stop)
     better.metrics["time_s"] = round(time.monotonic() - t0, 3)
     if better is not layout and on_best is not None:
         on_best(better)
@@ -387,11 +394,8 @@ def _search_share(parts: Sequence[Part]) -> float:
 
 
 def _problems(parts: Sequence[Part], layout: Layout, options: NestOptions) -> List[str]:
-    return check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
-                        tol=options.tolerance, chord_tol=options.chord_tol,
-                        rotations_override=options.rotations_override,
-                        mirror_override=options.mirror_override,
-                        free_rotation=options.free_rotation)
+    """The checker's verdict (:meth:`tail.Tail.check`: :func:`nest` reuses it)."""
+    return tail.current(parts, options).check(parts, layout, options)
 
 
 def _accept(old: Layout, parts: Sequence[Part], options: NestOptions, new: Layout) -> Layout:

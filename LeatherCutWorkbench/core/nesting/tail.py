@@ -1,0 +1,177 @@
+"""The tail of a nest: the work after the search, and the time kept free for it.
+
+After the search the engine builds the layout (:func:`engine._to_layout`,
+:func:`engine.fill_metrics`), :func:`nest` runs the independent checker, the
+caller writes its outputs (layout JSON, DXF, SVG) and the CLI exits.  All of
+it must fit in the budget (T + 10 % + 1 s promised), so the search ends
+:meth:`Tail.reserve` seconds before ``started + T``:
+
+* the build and the check are timed the first time they run (the engine does
+  both on its first layout while the search goes on) and kept ``FACTOR``
+  times, scaled to the number of copies; before that, an estimate per copy;
+* the outputs the caller declared with :func:`writing` cost a time per
+  written vertex (measured, times ``FACTOR``), plus ``EXIT_S``.
+
+:meth:`Tail.check` remembers its verdicts: the same layout under the same
+options is checked once (the strip phase checks its result, :func:`nest`
+would check it again).
+
+A :class:`Tail` lives for one :func:`nest` call (:func:`session`); code run
+outside one (benchmarks, tests calling the engine directly) gets a fresh
+one from :func:`current`.  Seconds throughout; ``time.monotonic()`` clock.
+"""
+
+from __future__ import annotations
+
+import contextvars
+import math
+import time
+from contextlib import contextmanager
+from typing import Dict, Iterator, List, Optional, Sequence, Tuple
+
+from ..model import Layout, Part
+from .checker import check_layout
+from .options import NestOptions
+
+#: the measured build + check cost is kept this many times (it is measured
+#: while the workers search, so it already includes their load)
+FACTOR = 1.5
+#: build + check seconds per copy assumed until measured (sheets of DXF parts
+#: ~0.4 ms, hides with ~40 holes and zones ~30 ms: the larger, times FACTOR later)
+PRIOR_PER_COPY_S = 0.004
+#: the outputs' measured time per vertex is kept this many times
+OUTPUT_FACTOR = 1.5
+#: the report and the process exit (the CLI ends with ``os._exit``)
+EXIT_S = 0.15
+#: seconds per written vertex of the placed outlines and the containers
+#: (ezdxf: one entity per segment ~0.15 ms; JSON / SVG ~0.05 ms), before FACTOR
+OUTPUT_S_PER_VERTEX = {"dxf": 0.15e-3, "layout": 0.05e-3, "svg": 0.05e-3}
+
+_CURRENT: contextvars.ContextVar[Optional["Tail"]] = contextvars.ContextVar("nest_tail", default=None)
+_OUTPUTS: contextvars.ContextVar[Tuple[str, ...]] = contextvars.ContextVar("nest_outputs", default=())
+
+
+class Tail:
+    """Cost model and check memo of one nest (see module doc)."""
+
+    def __init__(self, parts: Sequence[Part], options: NestOptions,
+                 outputs: Sequence[str] = ()) -> None:
+        self.started = options.started_at if options.started_at is not None else time.monotonic()
+        self.budget = options.time_budget
+        self.parts = parts
+        self.outputs = tuple(outputs)
+        #: measured (build + check) seconds per copy, None until measured
+        self.per_copy: Optional[float] = None
+        self._build: Optional[float] = None
+        self._check: Optional[float] = None
+        self._memo: Dict[tuple, List[str]] = {}
+        self._vertices = {p.id: _vertices(p) for p in parts}
+        spec = options.container
+        self._container_vertices = sum(
+            len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
+            for h in spec.hides) if spec.kind == "hide" else 4 * max(spec.count or 1, 1)
+
+    # ------------------------------------------------------------ cost model
+    def note_build(self, seconds: float, copies: int) -> None:
+        """A layout of ``copies`` placements took ``seconds`` to build."""
+        if self._build is None and copies > 0:
+            self._build = seconds / copies
+            self._update()
+
+    def note_check(self, seconds: float, copies: int) -> None:
+        if self._check is None and copies > 0:
+            self._check = seconds / copies
+            self._update()
+
+    def _update(self) -> None:
+        known = [c for c in (self._build, self._check) if c is not None]
+        # one of the two measured: the other assumed alike
+        self.per_copy = sum(known) * (2.0 / len(known))
+
+    def reserve(self, copies: int, rounds: int = 1) -> float:
+        """Seconds to keep free after the search for a nest of ``copies``
+        that still builds and checks its layout ``rounds`` times."""
+        per = self.per_copy if self.per_copy is not None else PRIOR_PER_COPY_S
+        return EXIT_S + FACTOR * per * copies * rounds + OUTPUT_FACTOR * self._output_s(copies)
+
+    def _output_s(self, copies: int) -> float:
+        """The declared outputs of ``copies`` average copies and the containers
+        (hides: in proportion to the copies placed)."""
+        rate = sum(OUTPUT_S_PER_VERTEX.get(k, 0.0) for k in self.outputs)
+        n = sum(max(p.quantity, 0) for p in self.parts)
+        if not rate or not n:
+            return 0.0
+        share = min(copies, n) / n
+        per_copy = sum(self._vertices[p.id] * max(p.quantity, 0) for p in self.parts) / n
+        return rate * (per_copy * min(copies, n) + share * self._container_vertices)
+
+    def promised_end(self) -> float:
+        """``started`` + T + 10 % + 1 s of the whole nest (inf without a budget)."""
+        return self.started + 1.1 * self.budget + 1.0 if self.budget > 0 else math.inf
+
+    # ------------------------------------------------------------ check memo
+    def check(self, parts: Sequence[Part], layout: Layout, options: NestOptions) -> List[str]:
+        """:func:`checker.check_layout` of ``layout`` under ``options`` (timed;
+        the same layout, parts and options again: the remembered verdict)."""
+        key = (id(parts), _options_key(options), _layout_key(layout))
+        hit = self._memo.get(key)
+        if hit is not None:
+            return list(hit)
+        t = time.monotonic()
+        problems = check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
+                                tol=options.tolerance, chord_tol=options.chord_tol,
+                                rotations_override=options.rotations_override,
+                                mirror_override=options.mirror_override,
+                                free_rotation=options.free_rotation)
+        self.note_check(time.monotonic() - t, len(layout.placements))
+        self._memo[key] = list(problems)
+        return problems
+
+
+def _vertices(p: Part) -> int:
+    return sum(len(c.segments) for c in [p.outer, *p.holes])
+
+
+def _options_key(o: NestOptions) -> tuple:
+    return (o.spacing, o.margin, o.tolerance, o.chord_tol,
+            None if o.rotations_override is None else tuple(o.rotations_override),
+            o.mirror_override, o.free_rotation)
+
+
+def _layout_key(layout: Layout) -> tuple:
+    """Everything of ``layout`` the checker reads."""
+    conts = tuple((c.id, c.kind, tuple(map(tuple, c.outline)),
+                   tuple(tuple(map(tuple, d)) for d in c.defects),
+                   tuple((g, tuple(map(tuple, z))) for g, z in c.zones), c.base_grade)
+                  for c in layout.containers)
+    pls = tuple((p.part_id, p.copy, p.container, p.x, p.y, p.angle, p.mirrored)
+                for p in layout.placements)
+    return conts, pls, tuple(layout.unplaced)
+
+
+@contextmanager
+def session(parts: Sequence[Part], options: NestOptions) -> Iterator[Tail]:
+    """The :class:`Tail` of one nest, :func:`current` until the block ends."""
+    tail = Tail(parts, options, _OUTPUTS.get())
+    token = _CURRENT.set(tail)
+    try:
+        yield tail
+    finally:
+        _CURRENT.reset(token)
+
+
+def current(parts: Sequence[Part], options: NestOptions) -> Tail:
+    """The running nest's :class:`Tail`, or a new one (no outputs declared)."""
+    tail = _CURRENT.get()
+    return tail if tail is not None else Tail(parts, options)
+
+
+@contextmanager
+def writing(kinds: Sequence[str]) -> Iterator[None]:
+    """Declare the outputs (``dxf``, ``layout``, ``svg``) the caller writes after
+    the nests started in this block: their time is kept free too."""
+    token = _OUTPUTS.set(tuple(kinds))
+    try:
+        yield
+    finally:
+        _OUTPUTS.reset(token)

@@ -1,0 +1,105 @@
+"""The end of a nest's time budget (core/nesting/tail.py): the reserve after
+the search follows the measured cost of building and checking the layout and
+the declared outputs, each layout is checked once, the strip phase counts
+from the user's start, and the CLI's quick exit loses no output."""
+
+import json
+import os
+import subprocess
+import sys
+import time
+
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, nest, tail
+from LeatherCutWorkbench.core.nesting.engine import _deadlines, _reserve
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+
+from nest_shapes import l_shape, rect
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def _parts():
+    return [rect("A", 40, 20, q=4, rotations=[0, 90]), l_shape("L", 30, 30, 10, q=3, rotations=[0, 90])]
+
+
+def test_reserve_grows_with_the_measured_build_and_check_cost():
+    parts = _parts()
+    opts = NestOptions(container=ContainerSpec.sheet(200, 100), time_budget=10)
+    t = tail.Tail(parts, opts)
+    prior = t.reserve(7)
+    t.note_build(0.07, 7)                  # 10 ms per copy to build ...
+    t.note_check(0.14, 7)                  # ... and 20 ms to check
+    assert t.per_copy == 0.03
+    measured = t.reserve(7)
+    assert measured > prior and measured == tail.EXIT_S + tail.FACTOR * 0.03 * 7
+    assert t.reserve(7, rounds=2) > measured and t.reserve(70) > measured
+    t.note_check(10.0, 7)                  # only the first measurement counts
+    assert t.reserve(7) == measured
+    # the engine's search end moves earlier by the larger reserve
+    early = _deadlines(0.0, 10.0, _reserve(10.0, 7, t))[0]
+    fast = tail.Tail(parts, opts)
+    fast.per_copy = 1e-4
+    assert early < _deadlines(0.0, 10.0, _reserve(10.0, 7, fast))[0] < 10.0
+
+
+def test_declared_outputs_are_kept_free_per_written_vertex():
+    parts = _parts()
+    opts = NestOptions(container=ContainerSpec.sheet(200, 100), time_budget=10)
+    with tail.session(parts, opts) as quiet:
+        pass
+    with tail.writing(["dxf", "layout"]):
+        with tail.session(parts, opts) as loud:
+            assert tail.current(parts, opts) is loud
+    assert loud.reserve(7) > quiet.reserve(7)
+    assert loud.outputs == ("dxf", "layout") and quiet.outputs == ()
+
+
+def test_each_layout_is_checked_once(monkeypatch):
+    """The strip phase checks its result, :func:`nest` used to check it again:
+    every distinct layout reaches the checker once now, and nest's verdict is
+    still the checker's (the layout is valid and marked checked)."""
+    inst = read_esicup(os.path.join(DATA, "shapes0.json"))
+    seen = []
+    real = tail.check_layout
+
+    def counting(parts, layout, **kw):
+        seen.append(tail._layout_key(layout))
+        return real(parts, layout, **kw)
+
+    monkeypatch.setattr(tail, "check_layout", counting)
+    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=3, workers=1)
+    lay = nest(inst.parts, opts)
+    assert lay.metrics["checked"] and not lay.unplaced
+    assert len(seen) >= 2                         # the engine's first layout, the final one
+    assert len(seen) == len(set(seen))
+    assert tail._layout_key(lay) in seen
+    assert real(inst.parts, lay) == []
+
+
+def test_strip_phase_counts_the_budget_from_the_users_start():
+    """The engine run by the strip phase got options copied with
+    ``dataclasses.replace``, which drops ``started_at``: both counted from the
+    call, so the time spent before it (reading the drawing) was not in the
+    budget and the call took the whole 5 s.  Now it ends 3 s earlier (the
+    assertion leaves 1.5 s for a loaded machine)."""
+    inst = read_esicup(os.path.join(DATA, "shapes0.json"))
+    opts = NestOptions(container=ContainerSpec.strip(inst.strip_height), time_budget=5, workers=1)
+    t_call = time.monotonic()
+    opts.started_at = t_call - 3.0               # the user pressed Nest 3 s ago
+    lay = nest(inst.parts, opts)
+    assert time.monotonic() - t_call < 3.5
+    assert lay.metrics["time_s"] >= 3.0          # counted from started_at
+    assert not lay.unplaced and lay.metrics["checked"]
+
+
+def test_cli_quick_exit_writes_the_whole_report_and_outputs(tmp_path):
+    lay = tmp_path / "lay.json"
+    exe = os.path.join(os.path.dirname(sys.executable), "leathercut")
+    r = subprocess.run([exe, "nest", "--esicup", os.path.join(DATA, "shapes0.json"), "--time", "3",
+                        "--workers", "1", "--json", "--layout-out", str(lay)],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(r.stdout)                      # complete: flushed before os._exit
+    assert d["metrics"]["placed_count"] == 43 and d["outputs"] == {"layout": str(lay)}
+    assert len(json.loads(lay.read_text())["items"]) == 43
