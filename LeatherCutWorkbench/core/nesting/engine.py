@@ -137,16 +137,18 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
                promised: Optional[float] = None) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
-    fill's last resort end: T + 10 % + 1 s, the promised end (``promised``:
-    that of the whole nest when this search has only a share of it), less twice
-    ``reserve`` (the placement step under way when it passes, then the final
-    build and check); only a machine too loaded even for box-only no-fit
-    polygons ever leaves copies unplaced for lack of time -- it was 1.5 T + 2 s,
-    and Baldacci Test5 / Test6 then took 18-19 s at T = 10 under load); never
-    before the search end.
+    fill's last resort end).
 
     The search ends ``reserve`` seconds before T (:func:`_reserve`: the
-    workers' shutdown, then the final build, check, outputs and exit).
+    workers' shutdown, then the final build, check, outputs and exit).  The
+    last resort is the promised end T + 10 % + 1 s (``promised``: that of the
+    whole nest when this search has only a share of it) less 1.5 ``reserve``
+    (the placement step under way when it passes, then the tail; the reserve
+    holds a safety factor already), never before the search end: only a
+    machine too loaded even for box-only no-fit polygons ever leaves copies
+    unplaced for lack of time (it was 1.5 T + 2 s, and Baldacci Test5 / Test6
+    then took 18-19 s at T = 10 under load).
+
     Worker 0 switches its first
     fill to coarse no-fit polygons after max(1 s, 5 % of T) so a layout exists
     within a second or two; the others fill exactly for up to 40 % of T (hides:
@@ -158,7 +160,7 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
     slow = t_start + (0.7 if hides else 0.4) * budget
     if promised is None:
         promised = t_start + 1.1 * budget + 1.0
-    return t_end, quick, slow, t_end, max(promised - 2.0 * reserve, t_end)
+    return t_end, quick, slow, t_end, max(promised - 1.5 * reserve, t_end)
 
 
 def _reserve(budget: float, n_copies: int, tail: Tail) -> float:
@@ -276,7 +278,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
         """The search end once the tail's cost is measured on the first layout
         (its build and check, timed while the workers search on)."""
         if not ends:
-            if budget > 0 and tail.per_copy is None:
+            # (past the search end there is nothing to move: no measurement)
+            if budget > 0 and tail.per_copy is None and time.monotonic() < t_end:
                 t = time.monotonic()
                 layout = build(first_best[1], first_best[2])
                 tail.note_build(time.monotonic() - t, len(layout.placements))

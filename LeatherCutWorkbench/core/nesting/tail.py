@@ -36,9 +36,10 @@ from .options import NestOptions
 #: the measured build + check cost is kept this many times (it is measured
 #: while the workers search, so it already includes their load)
 FACTOR = 1.5
-#: build + check seconds per copy assumed until measured (sheets of DXF parts
-#: ~0.4 ms, hides with ~40 holes and zones ~30 ms: the larger, times FACTOR later)
-PRIOR_PER_COPY_S = 0.004
+#: build + check seconds per copy assumed until measured, per container kind
+#: (measured: sheets of DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s --, hides with
+#: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
+PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.01}
 #: the outputs' measured time per vertex is kept this many times
 OUTPUT_FACTOR = 1.5
 #: the report and the process exit (the CLI ends with ``os._exit``)
@@ -67,6 +68,7 @@ class Tail:
         self._memo: Dict[tuple, List[str]] = {}
         self._vertices = {p.id: _vertices(p) for p in parts}
         spec = options.container
+        self._prior = PRIOR_PER_COPY_S.get(spec.kind, max(PRIOR_PER_COPY_S.values()))
         self._container_vertices = sum(
             len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
             for h in spec.hides) if spec.kind == "hide" else 4 * max(spec.count or 1, 1)
@@ -91,7 +93,7 @@ class Tail:
     def reserve(self, copies: int, rounds: int = 1) -> float:
         """Seconds to keep free after the search for a nest of ``copies``
         that still builds and checks its layout ``rounds`` times."""
-        per = self.per_copy if self.per_copy is not None else PRIOR_PER_COPY_S
+        per = self.per_copy if self.per_copy is not None else self._prior
         return EXIT_S + FACTOR * per * copies * rounds + OUTPUT_FACTOR * self._output_s(copies)
 
     def _output_s(self, copies: int) -> float:
