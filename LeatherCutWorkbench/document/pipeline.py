@@ -303,6 +303,8 @@ def set_flag_decision(flag_obj, decision: str) -> None:
 # -- nest -----------------------------------------------------------------------
 
 def _nest_prepare(job):
+    import time
+    pressed = time.monotonic()       # the budget counts from the user's Nest (reading the hide too)
     rec = effective_recognition(job)
     opts = stage_options(job, "Nest")
     if opts.container is None:
@@ -314,6 +316,7 @@ def _nest_prepare(job):
     if prof is not None:
         from ..post.compensation import reserve_in_nesting
         reserve_in_nesting(opts, prof)
+    opts.started_at = pressed
     return parts, opts
 
 

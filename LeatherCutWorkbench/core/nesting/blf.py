@@ -23,7 +23,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pyclipper
 
-from .hide_shapes import HullPockets
+from .hide_shapes import HullPockets, superset_rings
 from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
 
@@ -80,6 +80,7 @@ class Placer:
         self._ifp_cache: Dict[Tuple[int, int, bool], List[IntPath]] = {}
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
         self._pockets: Dict[tuple, HullPockets] = {}   # (bin region, exact) -> hull and pockets
+        self._region_rings: Dict[int, list] = {}  # variant -> its graded regions' (grade, ring)
 
     # ---------------------------------------------------------------- regions
     def _spec_index(self, b: int) -> int:
@@ -133,14 +134,34 @@ class Placer:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
 
-    @staticmethod
-    def _region_fit(spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
+    def _region_fit(self, spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
         """``fit`` cut down to where each stricter region of ``v``'s part lies in
-        the hide region of its grade (exact, zone borders need no margin)."""
-        from .nfp import region_ifp
-        for g, ring in rc.grid_rings(v.type_index, v.angle, v.mirrored):
-            outers, obstacles = spec.regions[spec.grade_key.get(g, g)]
-            inner = region_ifp(outers, obstacles, ring)
+        the hide region of its grade (exact, zone borders need no margin).
+        The region's hull, pockets and obstacle forms are kept per hide and
+        grade (:class:`HullPockets` with the ring's own convex pieces instead
+        of a sweep along the hide outline), and each region ring is replaced
+        by a ring containing it with few vertices (:func:`hide_shapes.superset_rings`,
+        as the variants' outlines are): Baldacci Test10's 200-400-vertex
+        region rings (60-100 convex pieces) took ~1 s per hide and variant."""
+        from .nfp import obstacle_forms, region_ifp
+        from .shapes import convex_hull
+        sb = next((i for i, s in enumerate(self.bin_specs) if s is spec), -1)
+        rings = self._region_rings.get(v.index)
+        if rings is None:
+            rings = self._region_rings[v.index] = superset_rings(
+                rc.grid_rings(v.type_index, v.angle, v.mirrored), v)
+        for g, ring in rings:
+            rk = spec.grade_key.get(g, g)
+            outers, obstacles = spec.regions[rk]
+            fk = (sb * 100003 + rk, True)
+            if sb < 0 or fk not in self._pockets:
+                pockets, forms = HullPockets(outers), [obstacle_forms(ob) for ob in obstacles]
+                if sb >= 0:
+                    self._pockets[fk], self._ob_forms[fk] = pockets, forms
+            else:
+                pockets, forms = self._pockets[fk], self._ob_forms[fk]
+            inner = region_ifp(outers, obstacles, ring, forms,
+                               fits=pockets.ifp(convex_hull(ring), ring))
             if not inner:
                 return []
             c = pyclipper.Pyclipper()

@@ -77,6 +77,16 @@ def simplify_for_hides(variants: Sequence[Variant], frac: float = HIDE_SIMPLIFY)
     return out
 
 
+def superset_rings(rings: Sequence[Tuple[int, IntPath]], v: Variant,
+                   frac: float = HIDE_SIMPLIFY) -> List[Tuple[int, IntPath]]:
+    """(grade, ring) of a variant's graded part regions, each ring replaced by
+    one containing it (grown by ``frac`` of the variant's size, simplified:
+    :func:`_superset`), so an inner-fit region of the new ring is one of the
+    true region; rings of up to ``_MIN_VERTICES`` vertices stay."""
+    d = frac * max(v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1])
+    return [(g, _superset(r, d) if len(r) > _MIN_VERTICES and d >= 8 else r) for g, r in rings]
+
+
 class HullPockets:
     """A hide region's outer rings as (convex hull, convex pieces of the
     pockets between hull and ring) for fast inner-fit regions of convex rings.
@@ -89,10 +99,14 @@ class HullPockets:
 
     def __init__(self, outers: Sequence[IntPath]):
         from .nfp import edge_form
+        self.outers = [list(o) for o in outers]
         self.parts: List[Tuple[IntPath, object]] = []
+        #: per outer: the pockets as (CCW ring, FormSet of its convex pieces)
+        self.pockets: List[List[Tuple[IntPath, object]]] = []
         for o in outers:
             hull = convex_hull(o)
             forms: Optional[list] = []
+            pockets: List[Tuple[IntPath, object]] = []
             gap = Polygon(hull).difference(Polygon(o))
             for g in getattr(gap, "geoms", [gap]):
                 if g.is_empty or g.geom_type != "Polygon" or g.area <= 0:
@@ -105,22 +119,42 @@ class HullPockets:
                     forms = None
                     break
                 forms.extend(edge_form(p) for p in pieces)
+                if pieces:
+                    pockets.append((ring, FormSet([edge_form(p) for p in pieces])))
             self.parts.append((hull if forms is not None else o,
                                FormSet(forms) if forms else forms))
+            self.pockets.append(pockets if forms is not None else [])
 
-    def ifp(self, b_hull: IntPath) -> List[IntPath]:
-        """Translations of the convex CCW ring ``b_hull`` inside the outers."""
-        from .nfp import _neg, difference, edge_form, inner_fit
+    def ifp(self, b_hull: IntPath, b: Optional[IntPath] = None) -> List[IntPath]:
+        """Translations of the convex CCW ring ``b_hull`` inside the outers.
+
+        With ``b`` (a CCW ring whose convex hull is ``b_hull``): exactly the
+        translations of ``b`` inside the outers -- inside a convex hull exactly
+        when its hull is, overlapping no pocket: the pockets' sums with -``b``'s
+        convex pieces.  (Baldacci Test10's graded part regions: 1 s per region
+        for the plain sweep of the 300-vertex hide outline, ~40x faster so.)
+        An outer without pockets' pieces, or a ``b`` that cannot be decomposed,
+        gets the plain sweep of ``b``."""
+        from .nfp import _neg, difference, edge_form, inner_fit, piece_forms, solid_nfp
         bw = max(p[0] for p in b_hull) - min(p[0] for p in b_hull)
         bh = max(p[1] for p in b_hull) - min(p[1] for p in b_hull)
-        nb = FormSet([edge_form(_neg(b_hull))])
+        nb = FormSet([edge_form(_neg(b_hull))]) if b is None else piece_forms(b, negate=True)
         fits: List[IntPath] = []
-        for ring, forms in self.parts:
+        for outer, (ring, forms), pockets in zip(self.outers, self.parts, self.pockets):
             if max(p[0] for p in ring) - min(p[0] for p in ring) < bw or \
                     max(p[1] for p in ring) - min(p[1] for p in ring) < bh:
                 continue
-            fit = inner_fit(ring, b_hull)
+            if b is not None and forms and nb is None:
+                fits.extend(inner_fit(outer, b))
+                continue
+            fit = inner_fit(ring, b_hull if b is None or forms is not None else b)
             if forms and fit:
-                fit = difference(fit, sum_all(forms, nb))
+                if b is None:
+                    fit = difference(fit, sum_all(forms, nb))
+                else:
+                    # per pocket the solid sum (its holes filled: ``b`` around a
+                    # pocket would leave the hull), then one difference
+                    blocked = [r for ring_p, fp in pockets for r in solid_nfp(ring_p, b, fp, nb)]
+                    fit = difference(fit, blocked)
             fits.extend(fit)
         return fits

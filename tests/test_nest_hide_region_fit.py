@@ -1,0 +1,75 @@
+"""Inner-fit regions of graded part regions on hides (blf.Placer._region_fit):
+the hull-and-pockets region of a concave ring is the plain sweep's region,
+the rings are replaced by rings containing them, and the fill of the
+Baldacci Test10 fixture is unchanged and valid."""
+
+import os
+
+from shapely.affinity import translate
+from shapely.geometry import Polygon
+
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, nest
+from LeatherCutWorkbench.core.nesting.esicup import read_esicup
+from LeatherCutWorkbench.core.nesting.hide_shapes import HullPockets, superset_rings
+from LeatherCutWorkbench.core.nesting.nfp import inner_fit
+from LeatherCutWorkbench.core.nesting.shapes import convex_hull
+
+DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
+
+
+def _grid(ring, s=10):
+    out = [[int(round(s * x)), int(round(s * y))] for x, y in ring]
+    return out if Polygon(out).exterior.is_ccw else out[::-1]
+
+
+def test_hull_and_pockets_give_the_exact_region_of_concave_rings():
+    """Concave part outlines (not their hulls) in a concave Baldacci hide
+    outline: the same region as the sweep along the outline (to rounding),
+    and its vertices put the ring inside the outline."""
+    inst = read_esicup(os.path.join(DATA, "Test8.json"))
+    ring = _grid(inst.hides[0].outline)
+    hp = HullPockets([ring])
+    outline = Polygon(ring)
+    tried = 0
+    for part in inst.parts[:8]:
+        b = _grid(part.outer.points())
+        if Polygon(b).area >= 0.999 * Polygon(convex_hull(b)).area:
+            continue                                  # convex: the old path covers it
+        tried += 1
+        fast, slow = hp.ifp(convex_hull(b), b), inner_fit(ring, b)
+        a_fast = sum(Polygon(r).area for r in fast)
+        a_slow = sum(Polygon(r).area for r in slow)
+        assert abs(a_fast - a_slow) <= 1e-3 * a_slow + 1e3
+        for r in fast:
+            for x, y in r[::max(1, len(r) // 8)]:
+                placed = translate(Polygon(b), x, y)
+                assert placed.difference(outline).area < 1e-4 * placed.area
+    assert tried >= 2
+
+
+def test_region_rings_are_replaced_by_rings_containing_them():
+    from LeatherCutWorkbench.core.nesting.engine import prepare
+    inst = read_esicup(os.path.join(DATA, "Test10_items13_15_hide7.json"))
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=5, workers=1)
+    _t, variants, problem, _c, _h, _s = prepare(inst.parts, opts)
+    rc = problem.region_check
+    seen = 0
+    for v in variants:
+        if not rc.applies(v.type_index):
+            continue
+        rings = rc.grid_rings(v.type_index, v.angle, v.mirrored)
+        for (g, r), (g2, s) in zip(rings, superset_rings(rings, v)):
+            assert g == g2 and Polygon(s).covers(Polygon(r))
+            seen += 1
+            if len(r) > 40:
+                assert len(s) < len(r) / 2
+    assert seen
+
+
+def test_graded_fixture_nests_validly():
+    inst = read_esicup(os.path.join(DATA, "Test10_items13_15_hide7.json"))
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=3, workers=1,
+                       max_evaluations=3)
+    lay = nest(inst.parts, opts)
+    assert not lay.unplaced
+    assert check_layout(inst.parts, lay) == []
