@@ -139,13 +139,16 @@ def zone_pieces(c: Container) -> List[Tuple[int, BaseGeometry]]:
     return out
 
 
-def usable_region(c: Container, grade: int) -> BaseGeometry:
+def usable_region(c: Container, grade: int,
+                  pieces: Optional[List[Tuple[int, BaseGeometry]]] = None) -> BaseGeometry:
     """Where a part of ``grade`` may lie on container ``c`` (no margins): the
     outline minus defects, restricted to zones of that grade or better.
     (One union per kind instead of one set operation per zone and defect:
-    a Baldacci Test10 hide, ~40 zones and ~45 holes, 5 grades, took 0.2 s.)"""
+    a Baldacci Test10 hide, ~40 zones and ~45 holes, 5 grades, took 0.2 s.)
+    ``pieces``: ``zone_pieces(c)`` when the caller has it (one per hide)."""
     outline = Polygon(c.outline)
-    pieces = zone_pieces(c)
+    if pieces is None:
+        pieces = zone_pieces(c)
     if c.base_grade >= grade:
         bad = [zp for zg, zp in pieces if zg < grade]
         region: BaseGeometry = outline.difference(unary_union(bad)) if bad else outline
@@ -175,13 +178,15 @@ def polygons_of(g: BaseGeometry) -> List[Polygon]:
 
 
 def shrink_for_margin(c: Container, grade: int, margin: float, simplify: float = 0.25,
+                      pieces: Optional[List[Tuple[int, BaseGeometry]]] = None,
                       ) -> Tuple[List[List[Point]], List[List[Point]], Optional[BaseGeometry]]:
     """The hide region for ``grade`` as (outer rings, obstacle rings) in mm for
     the parts' true shapes: the material shrunk by ``margin`` from the outline
     and the defects (zone borders need no margin), then simplified to fewer
-    vertices inside a ``simplify`` mm band (shrunk first, so it never grows)."""
+    vertices inside a ``simplify`` mm band (shrunk first, so it never grows).
+    ``pieces``: as for :func:`usable_region`."""
     outline = Polygon(c.outline)
-    region = usable_region(c, grade)
+    region = usable_region(c, grade, pieces)
     inner = outline.buffer(-margin, 16) if margin > 0 else outline
     region = region.intersection(inner)
     for d in c.defects:

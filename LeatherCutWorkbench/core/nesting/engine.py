@@ -25,7 +25,7 @@ from ..model import Container, Finding, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
-from .containers import net_area, rectangle, shrink_for_margin
+from .containers import net_area, rectangle, shrink_for_margin, zone_pieces
 from .convex_sums import warm_up
 from .nfp import is_convex
 from .hide_shapes import simplify_for_hides
@@ -83,8 +83,9 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
         # regions 4.5x slower than at 2 units on these 10,000-unit hides)
         fine = _perimeter(c.outline) < 2.5 * tol * len(c.outline)
         edge_tol = max(0.25, 0.05 * tol) if fine else 0.25
+        pieces = zone_pieces(c)                 # once per hide, not per grade
         for g in sorted(set(grades)):
-            outers, holes, region = shrink_for_margin(c, g, m, simplify=edge_tol)
+            outers, holes, region = shrink_for_margin(c, g, m, simplify=edge_tol, pieces=pieces)
             regions[g] = ([to_grid(_arr(o), scale) for o in outers],
                           [to_grid(_arr(r), scale) for r in holes])
             if region is not None:

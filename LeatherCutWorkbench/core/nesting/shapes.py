@@ -163,7 +163,9 @@ def transform_ring(ring: np.ndarray, angle: float, mirrored: bool, dx: float = 0
 
 
 def to_grid(ring: np.ndarray, scale: float) -> IntPath:
-    return [[int(round(x * scale)), int(round(y * scale))] for x, y in ring]
+    """``ring`` (mm) in grid units, rounded half to even like ``round`` (numpy:
+    ~10x faster on hide outlines and holes than a loop)."""
+    return np.rint(np.asarray(ring, dtype=np.float64) * scale).astype(np.int64).tolist()
 
 
 def offset_paths(paths: List[IntPath], delta: float, arc_tol: float) -> List[IntPath]:

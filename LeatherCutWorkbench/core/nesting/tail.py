@@ -33,13 +33,14 @@ from ..model import Layout, Part
 from .checker import check_layout
 from .options import NestOptions
 
-#: the measured build + check cost is kept this many times (it is measured
-#: while the workers search, so it already includes their load)
-FACTOR = 1.5
+#: the measured build + check cost is kept this many times: once, as it is
+#: measured while the workers search (two busy cores: it is about twice the
+#: cost at the end, when the parent has the machine to itself)
+FACTOR = 1.0
 #: build + check seconds per copy assumed until measured, per container kind
 #: (measured: sheets of DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s --, hides with
 #: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
-PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.01}
+PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.008}
 #: the outputs' measured time per vertex is kept this many times
 OUTPUT_FACTOR = 1.5
 #: the report and the process exit (the CLI ends with ``os._exit``)
