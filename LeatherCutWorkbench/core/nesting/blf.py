@@ -287,6 +287,8 @@ class Placer:
                     bins.append(self._new_bin(b))
                 best = None
                 for vi in (cands if self._may_fit(b, bins[b], t) else ()):
+                    if not abortable and time.monotonic() > self.clock.give_up_at:
+                        break               # out of time: the orientations tried so far
                     r = self.best_position(b, bins[b], vi)
                     if r is not None and (best is None or r < best[0]):
                         best = (r, vi)

@@ -40,7 +40,7 @@ FACTOR = 1.0
 #: build + check seconds per copy assumed until measured, per container kind
 #: (measured: sheets of DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s --, hides with
 #: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
-PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.008}
+PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.015}
 #: the outputs' measured time per vertex is kept this many times
 OUTPUT_FACTOR = 1.5
 #: the report and the process exit (the CLI ends with ``os._exit``)
