@@ -60,3 +60,18 @@ def write_hide_dxf(path: str, size: Tuple[float, float], hide_layer: str, zone_l
     msp.add_lwpolyline([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], close=True,
                        dxfattribs={"layer": zone_layer})
     doc.saveas(path)
+
+
+def assert_same_fit_region(fast, slow, ring, outline) -> None:
+    """Two inner-fit regions (grid paths) of the grid ring ``ring`` in the
+    shapely ``outline``: the same area (to rounding), and copies of the ring
+    at every eighth vertex of ``fast`` lie inside the outline."""
+    from shapely.affinity import translate
+    from shapely.geometry import Polygon
+    a_fast = sum(Polygon(r).area for r in fast)
+    a_slow = sum(Polygon(r).area for r in slow)
+    assert abs(a_fast - a_slow) <= 1e-3 * a_slow + 1e3
+    for r in fast:
+        for x, y in r[::max(1, len(r) // 8)]:
+            placed = translate(Polygon(ring), x, y)
+            assert placed.difference(outline).area < 1e-4 * placed.area
