@@ -135,7 +135,8 @@ _GRACE_S = 0.3
 
 
 def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = False,
-               promised: Optional[float] = None) -> Tuple[float, float, float, float, float]:
+               promised: Optional[float] = None, fill_reserve: Optional[float] = None
+               ) -> Tuple[float, float, float, float, float]:
     """(search end, first-fill exact limit of worker 0, of the other workers,
     bounding boxes only in the first fill from the search end, and the first
     fill's last resort end).
@@ -143,9 +144,11 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
     The search ends ``reserve`` seconds before T (:func:`_reserve`: the
     workers' shutdown, then the final build, check, outputs and exit).  The
     last resort is the promised end T + 10 % + 1 s (``promised``: that of the
-    whole nest when this search has only a share of it) less 1.5 ``reserve``
-    (the placement step under way when it passes, then the tail; the reserve
-    holds a safety factor already), never before the search end: only a
+    whole nest when this search has only a share of it) less 1.25
+    ``fill_reserve`` (default ``reserve``; the engine leaves the outputs out of
+    it: a first fill cut short for them loses copies, a late output only
+    time) -- the placement step under way when it passes (the fill checks
+    between orientations), then the tail --, never before the search end: only a
     machine too loaded even for box-only no-fit polygons ever leaves copies
     unplaced for lack of time (it was 1.5 T + 2 s, and Baldacci Test5 / Test6
     then took 18-19 s at T = 10 under load).
@@ -161,16 +164,17 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
     slow = t_start + (0.7 if hides else 0.4) * budget
     if promised is None:
         promised = t_start + 1.1 * budget + 1.0
-    return t_end, quick, slow, t_end, max(promised - 1.5 * reserve, t_end)
+    last = promised - 1.25 * (reserve if fill_reserve is None else fill_reserve)
+    return t_end, quick, slow, t_end, max(last, t_end)
 
 
-def _reserve(budget: float, n_copies: int, tail: Tail) -> float:
+def _reserve(budget: float, n_copies: int, tail: Tail, outputs: bool = True) -> float:
     """Seconds the search leaves free at the end of ``budget``: the workers'
     shutdown (``_GRACE_S`` and joining them: min(5 % T, 0.5 s)) and
     :meth:`Tail.reserve` (measured build and check, outputs, exit), that
     at most 40 % of the budget (so the first fill's last resort still comes
     after the search end and the tail fits in T + 10 % + 1 s)."""
-    return min(0.05 * budget, 0.5) + min(tail.reserve(n_copies), 0.4 * budget)
+    return min(0.05 * budget, 0.5) + min(tail.reserve(n_copies, outputs=outputs), 0.4 * budget)
 
 
 class _Best:
@@ -263,7 +267,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     t_end, quick, slow, boxes, hard = _deadlines(t_start, budget,
                                                  _reserve(budget, len(copies), tail),
                                                  options.container.kind == "hide",
-                                                 tail.promised_end())
+                                                 tail.promised_end(),
+                                                 _reserve(budget, len(copies), tail, outputs=False))
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 

@@ -42,7 +42,7 @@ FACTOR = 1.0
 #: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
 PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.015}
 #: the outputs' measured time per vertex is kept this many times
-OUTPUT_FACTOR = 1.5
+OUTPUT_FACTOR = 1.0
 #: the report and the process exit (the CLI ends with ``os._exit``)
 EXIT_S = 0.15
 #: seconds per written vertex of the placed outlines and the containers
@@ -70,9 +70,15 @@ class Tail:
         self._vertices = {p.id: _vertices(p) for p in parts}
         spec = options.container
         self._prior = PRIOR_PER_COPY_S.get(spec.kind, max(PRIOR_PER_COPY_S.values()))
-        self._container_vertices = sum(
-            len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
-            for h in spec.hides) if spec.kind == "hide" else 4 * max(spec.count or 1, 1)
+        if spec.kind == "hide":
+            # the hides used: about twice the parts' bounding-box area (at most all)
+            verts = sum(len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
+                        for h in spec.hides)
+            hide_area = sum(abs(_ring_area(h.outline)) for h in spec.hides) or 1.0
+            part_area = sum(_box_area(p) * max(p.quantity, 0) for p in parts)
+            self._container_vertices = verts * min(1.0, 2.0 * part_area / hide_area)
+        else:
+            self._container_vertices = 4 * max(spec.count or 1, 1)
 
     # ------------------------------------------------------------ cost model
     def note_build(self, seconds: float, copies: int) -> None:
@@ -91,11 +97,13 @@ class Tail:
         # one of the two measured: the other assumed alike
         self.per_copy = sum(known) * (2.0 / len(known))
 
-    def reserve(self, copies: int, rounds: int = 1) -> float:
+    def reserve(self, copies: int, rounds: int = 1, outputs: bool = True) -> float:
         """Seconds to keep free after the search for a nest of ``copies``
-        that still builds and checks its layout ``rounds`` times."""
+        that still builds and checks its layout ``rounds`` times (and writes
+        the declared outputs, unless ``outputs`` is False)."""
         per = self.per_copy if self.per_copy is not None else self._prior
-        return EXIT_S + FACTOR * per * copies * rounds + OUTPUT_FACTOR * self._output_s(copies)
+        out = OUTPUT_FACTOR * self._output_s(copies) if outputs else 0.0
+        return EXIT_S + FACTOR * per * copies * rounds + out
 
     def _output_s(self, copies: int) -> float:
         """The declared outputs of ``copies`` average copies and the containers
@@ -133,6 +141,16 @@ class Tail:
 
 def _vertices(p: Part) -> int:
     return sum(len(c.segments) for c in [p.outer, *p.holes])
+
+
+def _box_area(p: Part) -> float:
+    x0, y0, x1, y1 = p.outer.bbox
+    return (x1 - x0) * (y1 - y0)
+
+
+def _ring_area(ring) -> float:
+    return 0.5 * sum(ring[i - 1][0] * ring[i][1] - ring[i][0] * ring[i - 1][1]
+                     for i in range(len(ring)))
 
 
 def _options_key(o: NestOptions) -> tuple:
