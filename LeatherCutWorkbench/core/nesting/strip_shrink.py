@@ -43,9 +43,9 @@ from .checker import check_layout
 from .options import ContainerSpec, NestOptions
 try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
     from .overlap import PairTable
-    from .separation import Separator, seed_rng
+    from .separation import Separator, colliding_total, seed_rng
 except ImportError:       # pragma: no cover - the project's venv always has numba
-    PairTable = Separator = seed_rng = None  # type: ignore[assignment,misc]
+    PairTable = Separator = colliding_total = seed_rng = None  # type: ignore[assignment,misc]
 from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 
 #: the longest container or part dimension spans this many grid units
@@ -79,6 +79,12 @@ COMPRESSION_SHARE = 0.2
 COMPRESS_MAX = 0.0005
 COMPRESS_MIN = 0.00002
 SWAP_P = 0.5
+EXPLORE_POOL = True
+POOL_TRIES = 2
+POOL_SIZE = 20
+POOL_STDDEV = 0.25
+ADOPT = False
+RESET_W = False
 
 
 class _Instance:
@@ -173,11 +179,18 @@ def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
 def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
     """Close the strip from ``bx1`` to ``x1``: copies right of a random cut move
     left by the difference, then every copy is pushed back inside."""
-    cb, x0 = inst.cb, inst.x0
-    cut = rng.uniform(x0, bx1)
+    cb = inst.cb
+    cut = rng.uniform(inst.x0, bx1)
     centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
     X[centre > cut] -= bx1 - x1
-    X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+    _inside(inst, X, Y, V, x1)
+
+
+def _inside(inst: _Instance, X, Y, V, x1: float) -> None:
+    """Push every copy back inside the strip closed at ``x1`` (the separator
+    moves only overlapping copies, so one outside would stay there)."""
+    cb = inst.cb
+    X[:] = np.minimum(np.maximum(X, inst.x0 - cb[V, 0]), x1 - cb[V, 2])
     Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
 
 
@@ -201,20 +214,91 @@ class _Best:
 
 
 def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float, seed: int):
-    """One worker's shrink-and-separate loop (see module doc): its last ``KEEP``
-    overlap-free layouts (x1, X, Y, V), shortest last."""
+    """One worker's loop (see module doc): exploration (:func:`_explore`) until
+    ``COMPRESSION_SHARE`` of the time is left, then compression
+    (:func:`_compress`).  Returns its last ``KEEP`` overlap-free layouts
+    (x1, X, Y, V), shortest last."""
     rng = np.random.default_rng(seed)
     seed_rng(seed)
-    x0 = inst.x0
-    best = shared.get()
-    frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
-    fails = 0
     found: list = []
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
-    while time.monotonic() < deadline and not sep.stop.is_set():
-        if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
-            # compression: the last part of the time tries ever smaller shrinks
-            frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
+    if EXPLORE_POOL:
+        _explore(inst, sep, shared, squeeze_at, rng, found)
+        _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
+    else:
+        _compress(inst, sep, shared, squeeze_at, rng, found, MAX_SHRINK, MIN_SHRINK)
+        _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
+    return found
+
+
+def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, found: list) -> None:
+    """Exploration: the worker keeps its own infeasible layout at a target
+    length ``x1`` below the best valid one.  A failed separation goes into a
+    pool of the least-overlapping layouts at ``x1`` (sorted by total
+    overlap); the next try starts from one of them (the better ones more
+    likely), disrupted by a swap of two large copies (sparrow's
+    exploration).  After ``POOL_TRIES`` failures in a row the shrink halves
+    (down to ``MIN_SHRINK``): the target moves up, the pool's layouts still
+    fit.  On success the layout is the new best and the next target lies
+    the shrink (x1.5, at most ``MAX_SHRINK``) below it.  When another worker
+    reaches ``x1`` first, this one goes on from that worker's best."""
+    x0 = inst.x0
+    best = None
+    x1 = X = Y = V = None
+    pool: list = []
+    frac = MAX_SHRINK
+    fails = 0
+    while time.monotonic() < until and not sep.stop.is_set():
+        other = shared.get()
+        if best is None or other[0] < best[0] and (ADOPT or other[0] <= x1):
+            best = other
+            x1 = best[0] - frac * (best[0] - x0)
+            X, Y, V = best[1].copy(), best[2].copy(), best[3].copy()
+            _squeeze(inst, X, Y, V, best[0], x1, rng)
+            pool, fails = [], 0
+        target = x1
+
+        def passed() -> bool:
+            return shared.get()[0] <= target
+        if sep.separate(X, Y, V, x1, until, rng=rng, give_up=passed):
+            best = (inst.right_edge(X, V), X, Y, V)
+            shared.offer(best)
+            found[:] = (found + [best])[-KEEP:]
+            frac = min(MAX_SHRINK, frac * 1.5)
+            x1 = best[0] - frac * (best[0] - x0)
+            X, Y, V = X.copy(), Y.copy(), V.copy()
+            _squeeze(inst, X, Y, V, best[0], x1, rng)
+            pool, fails = [], 0
+            continue
+        if passed():
+            continue                      # the top of the loop takes the other's best
+        total = colliding_total(sep.overlaps(X, Y, V), sep.eps)
+        pool.append((total, X, Y, V))
+        pool.sort(key=lambda e: e[0])
+        del pool[POOL_SIZE:]
+        fails += 1
+        if fails >= POOL_TRIES and frac > MIN_SHRINK:
+            frac = max(MIN_SHRINK, frac * SHRINK_BACKOFF)
+            x1 = best[0] - frac * (best[0] - x0)
+            fails = 0
+        pick = pool[int(min(abs(rng.normal(0.0, POOL_STDDEV)), 0.999) * len(pool))]
+        X, Y, V = pick[1].copy(), pick[2].copy(), pick[3].copy()
+        _swap_large(inst, X, Y, V, rng)
+        _inside(inst, X, Y, V, x1)
+        if RESET_W:
+            sep.W[:] = 1.0
+
+
+def _compress(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, found: list,
+              hi: float, lo: float) -> None:
+    """Shrink the best valid layout by ``hi`` of its length, halving the
+    shrink on every failure down to ``lo`` (then ``hi`` again); a failure
+    goes back to the best (often with two large copies swapped)."""
+    x0 = inst.x0
+    best = shared.get()
+    frac = hi
+    fails = 0
+    while time.monotonic() < until and not sep.stop.is_set():
         other = shared.get()
         if other[0] < best[0]:
             best = other                  # another worker got further: go on from there
@@ -226,10 +310,10 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
         # another worker reaching x1 first makes this separation pointless
         def passed() -> bool:
             return shared.get()[0] <= x1
-        if sep.separate(X, Y, V, x1, deadline, rng=rng, give_up=passed):
+        if sep.separate(X, Y, V, x1, until, rng=rng, give_up=passed):
             best = (inst.right_edge(X, V), X, Y, V)
             shared.offer(best)
-            found = (found + [best])[-KEEP:]
+            found[:] = (found + [best])[-KEEP:]
             frac = min(hi, frac * 1.5)
             fails = 0
         elif passed():
@@ -239,7 +323,6 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
             frac *= SHRINK_BACKOFF
             if frac < lo:
                 frac = hi
-    return found
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
