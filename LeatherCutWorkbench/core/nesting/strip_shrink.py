@@ -3,21 +3,27 @@
 :func:`improve_strip` takes a valid strip layout (the engine's best) and,
 until the deadline, repeatedly
 
-1. closes the strip a little shorter than the best valid layout: the copies
-   right of a random vertical cut move left by the difference (sparrow's
-   shrink), everything is pushed back inside, which creates overlaps;
+1. closes the strip a little shorter than a valid layout: the copies right
+   of a random vertical cut move left by the difference (sparrow's shrink),
+   everything is pushed back inside, which creates overlaps;
 2. runs the separator (:mod:`separation`: guided local search over the
    penetration depths of :mod:`overlap`) until no pair overlaps;
-3. on success keeps the layout as the new best, on failure goes back to the
-   best, often with two large copies swapped, and tries a smaller shrink
-   (0.4 % of the length down to 0.02 %, then big steps again); the last
-   ``COMPRESSION_SHARE`` of the time only tries shrinks of 0.05 % to 0.002 %
-   (sparrow's exploration / compression split).
+3. *exploration* (the first ``1 - COMPRESSION_SHARE`` of the time,
+   :func:`_explore`): each worker keeps its own infeasible layout at its
+   target length.  A failed separation joins a pool of the least-overlapping
+   failures at that target; the next try starts from one of them (the better
+   ones more likely) with two large copies swapped, still below the best
+   (sparrow's exploration), and the shrink halves after ``POOL_TRIES``
+   failures in a row (0.4 % of the length down to 0.02 %).  On success the
+   layout is the new best and the next target lies below it.
+   *Compression* (the rest, :func:`_compress`): shrinks of 0.05 % down to
+   0.002 % of the best valid layout, back to it after each failure.
 
 Several worker threads (``options.workers``, default all cores up to 8)
-run this loop with their own random streams and share the best layout: each
-shrink starts from the shortest strip any of them has found, and a worker
-drops a separation as soon as another one has reached its target length.  The
+run this loop with their own random streams and share the best layout: a
+worker drops a separation as soon as another one has reached its target
+length and goes on from that layout (each compression shrink starts from the
+shortest strip any of them has found).  The
 result is re-checked by the independent :func:`checker.check_layout`; if it
 is not valid or not shorter, the input layout is returned unchanged, so the
 phase can never make a layout worse.
@@ -79,12 +85,12 @@ COMPRESSION_SHARE = 0.2
 COMPRESS_MAX = 0.0005
 COMPRESS_MIN = 0.00002
 SWAP_P = 0.5
-EXPLORE_POOL = True
+#: exploration (:func:`_explore`): failures in a row at one target before the
+#: shrink halves, failed layouts kept per target, and the spread of the pick
+#: (|N(0, POOL_STDDEV)| x pool size; sparrow's default 0.25)
 POOL_TRIES = 2
 POOL_SIZE = 20
 POOL_STDDEV = 0.25
-ADOPT = False
-RESET_W = False
 
 
 class _Instance:
@@ -222,12 +228,8 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
     seed_rng(seed)
     found: list = []
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
-    if EXPLORE_POOL:
-        _explore(inst, sep, shared, squeeze_at, rng, found)
-        _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
-    else:
-        _compress(inst, sep, shared, squeeze_at, rng, found, MAX_SHRINK, MIN_SHRINK)
-        _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
+    _explore(inst, sep, shared, squeeze_at, rng, found)
+    _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
     return found
 
 
@@ -250,8 +252,8 @@ def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, 
     fails = 0
     while time.monotonic() < until and not sep.stop.is_set():
         other = shared.get()
-        if best is None or other[0] < best[0] and (ADOPT or other[0] <= x1):
-            best = other
+        if best is None or other[0] <= x1:
+            best = other                  # first round, or another worker reached x1
             x1 = best[0] - frac * (best[0] - x0)
             X, Y, V = best[1].copy(), best[2].copy(), best[3].copy()
             _squeeze(inst, X, Y, V, best[0], x1, rng)
@@ -285,8 +287,6 @@ def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, 
         X, Y, V = pick[1].copy(), pick[2].copy(), pick[3].copy()
         _swap_large(inst, X, Y, V, rng)
         _inside(inst, X, Y, V, x1)
-        if RESET_W:
-            sep.W[:] = 1.0
 
 
 def _compress(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, found: list,
