@@ -258,21 +258,16 @@ def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, 
             X, Y, V = best[1].copy(), best[2].copy(), best[3].copy()
             _squeeze(inst, X, Y, V, best[0], x1, rng)
             pool, fails = [], 0
-        target = x1
-
-        def passed() -> bool:
-            return shared.get()[0] <= target
-        if sep.separate(X, Y, V, x1, until, rng=rng, give_up=passed):
-            best = (inst.right_edge(X, V), X, Y, V)
-            shared.offer(best)
-            found[:] = (found + [best])[-KEEP:]
+        new = _separate(inst, sep, shared, X, Y, V, x1, until, rng, found)
+        if new is not None:
+            best = new
             frac = min(MAX_SHRINK, frac * 1.5)
             x1 = best[0] - frac * (best[0] - x0)
             X, Y, V = X.copy(), Y.copy(), V.copy()
             _squeeze(inst, X, Y, V, best[0], x1, rng)
             pool, fails = [], 0
             continue
-        if passed():
+        if shared.get()[0] <= x1:
             continue                      # the top of the loop takes the other's best
         total = colliding_total(sep.overlaps(X, Y, V), sep.eps)
         pool.append((total, X, Y, V))
@@ -307,22 +302,32 @@ def _compress(inst: _Instance, sep: Separator, shared: _Best, until: float, rng,
         if fails and rng.random() < SWAP_P:
             _swap_large(inst, X, Y, V, rng)
         _squeeze(inst, X, Y, V, bx1, x1, rng)
-        # another worker reaching x1 first makes this separation pointless
-        def passed() -> bool:
-            return shared.get()[0] <= x1
-        if sep.separate(X, Y, V, x1, until, rng=rng, give_up=passed):
-            best = (inst.right_edge(X, V), X, Y, V)
-            shared.offer(best)
-            found[:] = (found + [best])[-KEEP:]
+        new = _separate(inst, sep, shared, X, Y, V, x1, until, rng, found)
+        if new is not None:
+            best = new
             frac = min(hi, frac * 1.5)
             fails = 0
-        elif passed():
+        elif shared.get()[0] <= x1:
             continue                      # not a failure: go on from the new best
         else:
             fails += 1
             frac *= SHRINK_BACKOFF
             if frac < lo:
                 frac = hi
+
+
+def _separate(inst: _Instance, sep: Separator, shared: _Best, X, Y, V, x1: float, until: float,
+              rng, found: list):
+    """Separate (X, Y, V) in the strip closed at ``x1``; on success the new
+    best (length, X, Y, V), offered to the other workers and kept in
+    ``found`` (its last ``KEEP``), else None.  The separation is dropped as
+    soon as another worker has reached ``x1`` (its work could not be kept)."""
+    if not sep.separate(X, Y, V, x1, until, rng=rng, give_up=lambda: shared.get()[0] <= x1):
+        return None
+    best = (inst.right_edge(X, V), X, Y, V)
+    shared.offer(best)
+    found[:] = (found + [best])[-KEEP:]
+    return best
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
