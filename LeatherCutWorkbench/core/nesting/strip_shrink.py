@@ -164,7 +164,11 @@ class _Instance:
 def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
     """Disrupt a layout: two copies of different types among the larger half
     trade places (bounding-box centres), so the separator can find another
-    arrangement than the one it got stuck in."""
+    arrangement than the one it got stuck in.  The copies whose centre a
+    swapped copy will cover move by the opposite shift, into the room it
+    leaves (as sparrow moves the items a swapped item would contain), so a
+    large copy swapped with a small one does not land on the small one's
+    neighbours."""
     cb = inst.cb
     area = (cb[V, 2] - cb[V, 0]) * (cb[V, 3] - cb[V, 1])
     big = np.nonzero(area >= np.median(area))[0]
@@ -174,12 +178,27 @@ def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
             break
     else:
         return
-    ca = (X[a] + 0.5 * (cb[V[a], 0] + cb[V[a], 2]), Y[a] + 0.5 * (cb[V[a], 1] + cb[V[a], 3]))
-    cb_ = (X[b] + 0.5 * (cb[V[b], 0] + cb[V[b], 2]), Y[b] + 0.5 * (cb[V[b], 1] + cb[V[b], 3]))
-    X[a] += cb_[0] - ca[0]
-    Y[a] += cb_[1] - ca[1]
-    X[b] += ca[0] - cb_[0]
-    Y[b] += ca[1] - cb_[1]
+    cx = X + 0.5 * (cb[V, 0] + cb[V, 2])
+    cy = Y + 0.5 * (cb[V, 1] + cb[V, 3])
+    dx, dy = cx[b] - cx[a], cy[b] - cy[a]
+    others = np.ones(len(X), dtype=bool)
+    others[[a, b]] = False
+    in_a = others & _covers(inst, X[a] + dx, Y[a] + dy, V[a], cx, cy)
+    in_b = others & ~in_a & _covers(inst, X[b] - dx, Y[b] - dy, V[b], cx, cy)
+    X[in_a] -= dx
+    Y[in_a] -= dy
+    X[in_b] += dx
+    Y[in_b] += dy
+    X[a] += dx
+    Y[a] += dy
+    X[b] -= dx
+    Y[b] -= dy
+
+
+def _covers(inst: _Instance, x: float, y: float, v: int, px, py):
+    """Which points (px, py) lie in variant ``v``'s core box placed at (x, y)."""
+    b = inst.cb[v]
+    return (px >= x + b[0]) & (px <= x + b[2]) & (py >= y + b[1]) & (py <= y + b[3])
 
 
 def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
