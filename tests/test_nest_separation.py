@@ -16,7 +16,9 @@ from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.overlap import PairTable, copy_penalty, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
 from LeatherCutWorkbench.core.nesting.separation import Separator
-from LeatherCutWorkbench.core.nesting.strip_shrink import (_Instance, _search_share, improve_last_sheet,
+from LeatherCutWorkbench.core.nesting.strip_shrink import (_Best, _explore, _Instance, _search_share,
+                                                         _swap_large,
+                                                         improve_last_sheet,
                                                          improve_strip, nest_compacted)
 
 from nest_shapes import frame, rect
@@ -281,3 +283,72 @@ def test_engine_search_ends_at_its_plateau():
     assert stall.stop()
     user = _Stall(100.0, None, lambda: True)
     assert user.stop()                            # the user's Stop always counts
+
+
+def test_exploration_retries_from_its_own_failed_layout_inside_the_strip():
+    """Exploration (sparrow's): after a failed separation the worker does not
+    go back to the best valid layout; its next try starts from the layout that
+    failure left (two large copies swapped, with the copies they cover), still below
+    the best and inside the strip.  Every layout it keeps passes the checker."""
+    parts, opts = _fu()
+    lay = nest(parts, opts)
+    inst = _Instance(lay, parts, opts)
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
+                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
+    shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+    calls = []
+    real = sep.separate
+
+    def recording(X, Y, V, x1, *a, **k):
+        cb = inst.cb[V]
+        inside = bool((X + cb[:, 0] >= inst.x0 - 1e-6).all() and (X + cb[:, 2] <= x1 + 1e-6).all()
+                      and (Y + cb[:, 1] >= inst.y0 - 1e-6).all() and (Y + cb[:, 3] <= inst.y1 + 1e-6).all())
+        start, best = (X.copy(), Y.copy()), shared.get()[0]
+        ok = real(X, Y, V, x1, *a, **k)
+        calls.append(dict(x1=x1, best=best, ok=ok, inside=inside, start=start, end=(X.copy(), Y.copy())))
+        return ok
+    sep.separate = recording
+    found: list = []
+    _explore(inst, sep, shared, time.monotonic() + 3.0, np.random.default_rng(1), found)
+    assert calls and all(c["inside"] and c["x1"] < c["best"] for c in calls)
+    retries = [(a, b) for a, b in zip(calls, calls[1:]) if not a["ok"] and b["best"] == a["best"]]
+    assert retries, "no failed separation in 3 s"
+    for a, b in retries[:1]:                      # a pool of one: the retry starts from it
+        moved = (np.abs(a["end"][0] - b["start"][0]) > 1e-9) | (np.abs(a["end"][1] - b["start"][1]) > 1e-9)
+        assert 2 <= moved.sum() <= len(moved) // 2    # the swapped pair and the copies it carries
+    assert found
+    for x1, X, Y, V in found:
+        new = inst.to_layout(lay, X, Y, V)
+        fill_metrics(parts, new, opts)
+        assert _valid(parts, new, opts) == []
+        assert new.metrics["strip_length_mm"] < lay.metrics["strip_length_mm"]
+
+
+def test_swap_of_a_large_and_a_small_copy_carries_the_covered_copies_into_the_room_left():
+    """The exploration's disruption: a 40 x 40 copy and a 20 x 20 copy trade
+    places; the two 10 x 10 copies next to the small one, which the large copy
+    would now cover, move by the opposite shift into the room it leaves, so the
+    swap creates no overlap (without that carry the large copy lands on both)."""
+    parts = [rect("A", 40, 40), rect("B", 20, 20), rect("C", 10, 10, q=2)]
+    opts = NestOptions(container=ContainerSpec.strip(40.0), time_budget=1.0, seed=1, workers=1,
+                       rotations_override=[0])
+    spots = [("A", 0, 0, 0), ("B", 0, 40, 0), ("C", 0, 40, 20), ("C", 1, 50, 20)]
+    lay = Layout(containers=[Container(id="strip", kind="strip", outline=[])],
+                 placements=[Placement(part_id=p, copy=k, container="strip", x=x, y=y, angle=0.0)
+                             for p, k, x, y in spots])
+    fill_metrics(parts, lay, opts)
+    assert _valid(parts, lay, opts) == []
+    inst = _Instance(lay, parts, opts)
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
+                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
+    X, Y, V = inst.X.copy(), inst.Y.copy(), inst.V.copy()
+    _swap_large(inst, X, Y, V, np.random.default_rng(3))
+    s = inst.scale
+    assert (X[1] / s, Y[1] / s) == pytest.approx((10.0, 10.0), abs=0.01)    # B at A's centre
+    assert (X[0] / s, Y[0] / s) == pytest.approx((30.0, -10.0), abs=0.01)   # A at B's centre
+    # the C copies keep their places relative to A: shifted by A's move reversed
+    assert np.allclose(np.c_[X[2:], Y[2:]] / s, [[10.0, 30.0], [20.0, 30.0]], atol=0.01)
+    assert sep.overlaps(X, Y, V).max() <= inst.eps
+    plain_x, plain_y = inst.X.copy(), inst.Y.copy()
+    plain_x[[0, 1]], plain_y[[0, 1]] = X[[0, 1]], Y[[0, 1]]
+    assert sep.overlaps(plain_x, plain_y, V).max() > 100 * inst.eps

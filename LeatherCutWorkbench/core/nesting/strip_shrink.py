@@ -3,21 +3,27 @@
 :func:`improve_strip` takes a valid strip layout (the engine's best) and,
 until the deadline, repeatedly
 
-1. closes the strip a little shorter than the best valid layout: the copies
-   right of a random vertical cut move left by the difference (sparrow's
-   shrink), everything is pushed back inside, which creates overlaps;
+1. closes the strip a little shorter than a valid layout: the copies right
+   of a random vertical cut move left by the difference (sparrow's shrink),
+   everything is pushed back inside, which creates overlaps;
 2. runs the separator (:mod:`separation`: guided local search over the
    penetration depths of :mod:`overlap`) until no pair overlaps;
-3. on success keeps the layout as the new best, on failure goes back to the
-   best, often with two large copies swapped, and tries a smaller shrink
-   (0.4 % of the length down to 0.02 %, then big steps again); the last
-   ``COMPRESSION_SHARE`` of the time only tries shrinks of 0.05 % to 0.002 %
-   (sparrow's exploration / compression split).
+3. *exploration* (the first ``1 - COMPRESSION_SHARE`` of the time,
+   :func:`_explore`): each worker keeps its own infeasible layout at its
+   target length.  A failed separation joins a pool of the least-overlapping
+   failures at that target; the next try starts from one of them (the better
+   ones more likely) with two large copies swapped, still below the best
+   (sparrow's exploration), and the shrink halves after ``POOL_TRIES``
+   failures in a row (0.4 % of the length down to 0.02 %).  On success the
+   layout is the new best and the next target lies below it.
+   *Compression* (the rest, :func:`_compress`): shrinks of 0.05 % down to
+   0.002 % of the best valid layout, back to it after each failure.
 
 Several worker threads (``options.workers``, default all cores up to 8)
-run this loop with their own random streams and share the best layout: each
-shrink starts from the shortest strip any of them has found, and a worker
-drops a separation as soon as another one has reached its target length.  The
+run this loop with their own random streams and share the best layout: a
+worker drops a separation as soon as another one has reached its target
+length and goes on from that layout (each compression shrink starts from the
+shortest strip any of them has found).  The
 result is re-checked by the independent :func:`checker.check_layout`; if it
 is not valid or not shorter, the input layout is returned unchanged, so the
 phase can never make a layout worse.
@@ -43,9 +49,9 @@ from . import tail
 from .options import ContainerSpec, NestOptions
 try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
     from .overlap import PairTable
-    from .separation import Separator, seed_rng
+    from .separation import Separator, colliding_total, seed_rng
 except ImportError:       # pragma: no cover - the project's venv always has numba
-    PairTable = Separator = seed_rng = None  # type: ignore[assignment,misc]
+    PairTable = Separator = colliding_total = seed_rng = None  # type: ignore[assignment,misc]
 from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 
 #: the longest container or part dimension spans this many grid units
@@ -82,6 +88,12 @@ COMPRESSION_SHARE = 0.2
 COMPRESS_MAX = 0.0005
 COMPRESS_MIN = 0.00002
 SWAP_P = 0.5
+#: exploration (:func:`_explore`): failures in a row at one target before the
+#: shrink halves, failed layouts kept per target, and the spread of the pick
+#: (|N(0, POOL_STDDEV)| x pool size; sparrow's default 0.25)
+POOL_TRIES = 2
+POOL_SIZE = 20
+POOL_STDDEV = 0.25
 
 
 class _Instance:
@@ -155,7 +167,11 @@ class _Instance:
 def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
     """Disrupt a layout: two copies of different types among the larger half
     trade places (bounding-box centres), so the separator can find another
-    arrangement than the one it got stuck in."""
+    arrangement than the one it got stuck in.  The copies whose centre a
+    swapped copy will cover move by the opposite shift, into the room it
+    leaves (as sparrow moves the items a swapped item would contain), so a
+    large copy swapped with a small one does not land on the small one's
+    neighbours."""
     cb = inst.cb
     area = (cb[V, 2] - cb[V, 0]) * (cb[V, 3] - cb[V, 1])
     big = np.nonzero(area >= np.median(area))[0]
@@ -165,22 +181,44 @@ def _swap_large(inst: _Instance, X, Y, V, rng) -> None:
             break
     else:
         return
-    ca = (X[a] + 0.5 * (cb[V[a], 0] + cb[V[a], 2]), Y[a] + 0.5 * (cb[V[a], 1] + cb[V[a], 3]))
-    cb_ = (X[b] + 0.5 * (cb[V[b], 0] + cb[V[b], 2]), Y[b] + 0.5 * (cb[V[b], 1] + cb[V[b], 3]))
-    X[a] += cb_[0] - ca[0]
-    Y[a] += cb_[1] - ca[1]
-    X[b] += ca[0] - cb_[0]
-    Y[b] += ca[1] - cb_[1]
+    cx = X + 0.5 * (cb[V, 0] + cb[V, 2])
+    cy = Y + 0.5 * (cb[V, 1] + cb[V, 3])
+    dx, dy = cx[b] - cx[a], cy[b] - cy[a]
+    others = np.ones(len(X), dtype=bool)
+    others[[a, b]] = False
+    in_a = others & _covers(inst, X[a] + dx, Y[a] + dy, V[a], cx, cy)
+    in_b = others & ~in_a & _covers(inst, X[b] - dx, Y[b] - dy, V[b], cx, cy)
+    X[in_a] -= dx
+    Y[in_a] -= dy
+    X[in_b] += dx
+    Y[in_b] += dy
+    X[a] += dx
+    Y[a] += dy
+    X[b] -= dx
+    Y[b] -= dy
+
+
+def _covers(inst: _Instance, x: float, y: float, v: int, px, py):
+    """Which points (px, py) lie in variant ``v``'s core box placed at (x, y)."""
+    b = inst.cb[v]
+    return (px >= x + b[0]) & (px <= x + b[2]) & (py >= y + b[1]) & (py <= y + b[3])
 
 
 def _squeeze(inst: _Instance, X, Y, V, bx1: float, x1: float, rng) -> None:
     """Close the strip from ``bx1`` to ``x1``: copies right of a random cut move
     left by the difference, then every copy is pushed back inside."""
-    cb, x0 = inst.cb, inst.x0
-    cut = rng.uniform(x0, bx1)
+    cb = inst.cb
+    cut = rng.uniform(inst.x0, bx1)
     centre = X + 0.5 * (cb[V, 0] + cb[V, 2])
     X[centre > cut] -= bx1 - x1
-    X[:] = np.minimum(np.maximum(X, x0 - cb[V, 0]), x1 - cb[V, 2])
+    _inside(inst, X, Y, V, x1)
+
+
+def _inside(inst: _Instance, X, Y, V, x1: float) -> None:
+    """Push every copy back inside the strip closed at ``x1`` (the separator
+    moves only overlapping copies, so one outside would stay there)."""
+    cb = inst.cb
+    X[:] = np.minimum(np.maximum(X, inst.x0 - cb[V, 0]), x1 - cb[V, 2])
     Y[:] = np.minimum(np.maximum(Y, inst.y0 - cb[V, 1]), inst.y1 - cb[V, 3])
 
 
@@ -204,20 +242,80 @@ class _Best:
 
 
 def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float, seed: int):
-    """One worker's shrink-and-separate loop (see module doc): its last ``KEEP``
-    overlap-free layouts (x1, X, Y, V), shortest last."""
+    """One worker's loop (see module doc): exploration (:func:`_explore`) until
+    ``COMPRESSION_SHARE`` of the time is left, then compression
+    (:func:`_compress`).  Returns its last ``KEEP`` overlap-free layouts
+    (x1, X, Y, V), shortest last."""
     rng = np.random.default_rng(seed)
     seed_rng(seed)
-    x0 = inst.x0
-    best = shared.get()
-    frac, hi, lo = MAX_SHRINK, MAX_SHRINK, MIN_SHRINK
-    fails = 0
     found: list = []
     squeeze_at = time.monotonic() + (1.0 - COMPRESSION_SHARE) * (deadline - time.monotonic())
-    while time.monotonic() < deadline and not sep.stop.is_set():
-        if hi == MAX_SHRINK and time.monotonic() > squeeze_at:
-            # compression: the last part of the time tries ever smaller shrinks
-            frac, hi, lo = COMPRESS_MAX, COMPRESS_MAX, COMPRESS_MIN
+    _explore(inst, sep, shared, squeeze_at, rng, found)
+    _compress(inst, sep, shared, deadline, rng, found, COMPRESS_MAX, COMPRESS_MIN)
+    return found
+
+
+def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, found: list) -> None:
+    """Exploration: the worker keeps its own infeasible layout at a target
+    length ``x1`` below the best valid one.  A failed separation goes into a
+    pool of the least-overlapping layouts at ``x1`` (sorted by total
+    overlap); the next try starts from one of them (the better ones more
+    likely), disrupted by a swap of two large copies (sparrow's
+    exploration).  After ``POOL_TRIES`` failures in a row the shrink halves
+    (down to ``MIN_SHRINK``): the target moves up, the pool's layouts still
+    fit.  On success the layout is the new best and the next target lies
+    the shrink (x1.5, at most ``MAX_SHRINK``) below it.  When another worker
+    reaches ``x1`` first, this one goes on from that worker's best."""
+    x0 = inst.x0
+    best = None
+    x1 = X = Y = V = None
+    pool: list = []
+    frac = MAX_SHRINK
+    fails = 0
+    while time.monotonic() < until and not sep.stop.is_set():
+        other = shared.get()
+        if best is None or other[0] <= x1:
+            best = other                  # first round, or another worker reached x1
+            x1 = best[0] - frac * (best[0] - x0)
+            X, Y, V = best[1].copy(), best[2].copy(), best[3].copy()
+            _squeeze(inst, X, Y, V, best[0], x1, rng)
+            pool, fails = [], 0
+        new = _separate(inst, sep, shared, X, Y, V, x1, until, rng, found)
+        if new is not None:
+            best = new
+            frac = min(MAX_SHRINK, frac * 1.5)
+            x1 = best[0] - frac * (best[0] - x0)
+            X, Y, V = X.copy(), Y.copy(), V.copy()
+            _squeeze(inst, X, Y, V, best[0], x1, rng)
+            pool, fails = [], 0
+            continue
+        if shared.get()[0] <= x1:
+            continue                      # the top of the loop takes the other's best
+        total = colliding_total(sep.overlaps(X, Y, V), sep.eps)
+        pool.append((total, X, Y, V))
+        pool.sort(key=lambda e: e[0])
+        del pool[POOL_SIZE:]
+        fails += 1
+        if fails >= POOL_TRIES and frac > MIN_SHRINK:
+            frac = max(MIN_SHRINK, frac * SHRINK_BACKOFF)
+            x1 = best[0] - frac * (best[0] - x0)
+            fails = 0
+        pick = pool[int(min(abs(rng.normal(0.0, POOL_STDDEV)), 0.999) * len(pool))]
+        X, Y, V = pick[1].copy(), pick[2].copy(), pick[3].copy()
+        _swap_large(inst, X, Y, V, rng)
+        _inside(inst, X, Y, V, x1)
+
+
+def _compress(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, found: list,
+              hi: float, lo: float) -> None:
+    """Shrink the best valid layout by ``hi`` of its length, halving the
+    shrink on every failure down to ``lo`` (then ``hi`` again); a failure
+    goes back to the best (often with two large copies swapped)."""
+    x0 = inst.x0
+    best = shared.get()
+    frac = hi
+    fails = 0
+    while time.monotonic() < until and not sep.stop.is_set():
         other = shared.get()
         if other[0] < best[0]:
             best = other                  # another worker got further: go on from there
@@ -226,23 +324,32 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
         if fails and rng.random() < SWAP_P:
             _swap_large(inst, X, Y, V, rng)
         _squeeze(inst, X, Y, V, bx1, x1, rng)
-        # another worker reaching x1 first makes this separation pointless
-        def passed() -> bool:
-            return shared.get()[0] <= x1
-        if sep.separate(X, Y, V, x1, deadline, rng=rng, give_up=passed):
-            best = (inst.right_edge(X, V), X, Y, V)
-            shared.offer(best)
-            found = (found + [best])[-KEEP:]
+        new = _separate(inst, sep, shared, X, Y, V, x1, until, rng, found)
+        if new is not None:
+            best = new
             frac = min(hi, frac * 1.5)
             fails = 0
-        elif passed():
+        elif shared.get()[0] <= x1:
             continue                      # not a failure: go on from the new best
         else:
             fails += 1
             frac *= SHRINK_BACKOFF
             if frac < lo:
                 frac = hi
-    return found
+
+
+def _separate(inst: _Instance, sep: Separator, shared: _Best, X, Y, V, x1: float, until: float,
+              rng, found: list):
+    """Separate (X, Y, V) in the strip closed at ``x1``; on success the new
+    best (length, X, Y, V), offered to the other workers and kept in
+    ``found`` (its last ``KEEP``), else None.  The separation is dropped as
+    soon as another worker has reached ``x1`` (its work could not be kept)."""
+    if not sep.separate(X, Y, V, x1, until, rng=rng, give_up=lambda: shared.get()[0] <= x1):
+        return None
+    best = (inst.right_edge(X, V), X, Y, V)
+    shared.offer(best)
+    found[:] = (found + [best])[-KEEP:]
+    return best
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
