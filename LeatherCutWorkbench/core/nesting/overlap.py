@@ -30,7 +30,7 @@ on disk (``cache=True``).
 from __future__ import annotations
 
 import time
-from typing import List, Sequence
+from typing import Callable, List, Optional, Sequence
 
 import numpy as np
 import pyclipper
@@ -60,9 +60,14 @@ class PairTable:
     ring ``k`` is rows ``pts[start[k] : start[k] + count[k]]`` (x, y of each point, then the
     edge to the next point and its 1 / squared length: :func:`_edge_rows`; float64 grid units,
     outer rings CCW, holes CW: the non-zero rule).  ``bbox[p]`` bounds them;
-    a translation outside it cannot overlap."""
+    a translation outside it cannot overlap.
 
-    def __init__(self, variants: Sequence[Variant], deadline: float = float("inf")):
+    ``pair_rings(a, b)`` (optional) gives pair (a, b)'s rings instead of
+    :func:`pair_nfp` (the hide separator passes the bottom-left fill's cached
+    no-fit polygons of a few variants, :mod:`hide_separation`)."""
+
+    def __init__(self, variants: Sequence[Variant], deadline: float = float("inf"),
+                 pair_rings: Optional[Callable[[int, int], List[np.ndarray]]] = None):
         n = len(variants)
         self.n = n
         #: False when ``deadline`` (``time.monotonic()``) passed before every pair was built
@@ -73,6 +78,10 @@ class PairTable:
                 self.complete = False
                 break
             for b in range(a, n):
+                if pair_rings is not None:
+                    rs = [np.asarray(r, dtype=np.float64) for r in pair_rings(a, b) if len(r) >= 3]
+                    rings[a * n + b], rings[b * n + a] = rs, [-r for r in rs]
+                    continue
                 paths = pair_nfp(variants[a], variants[b])
                 if a != b and (variants[a].holes or variants[b].holes):
                     # pair_nfp cuts out only a's holes (b inside a); -NFP(b, a) cuts

@@ -394,7 +394,7 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
             holder[0], holder[1] = (c, seq, Trace(placements, [])), order
             budget.improved(c, seq, _out(placements, order))
 
-    s = AssignmentSearch(problem, placer, rng, _mutate, expired)
+    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end)
     st = s.start(hides, genes)
     if st is not None:
         s.run(st, net, on_better, item_area)
