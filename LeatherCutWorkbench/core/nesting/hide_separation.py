@@ -42,7 +42,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from numba import njit
 
-from .overlap import COST_OFFSET, PairTable, _edge_rows, copy_penalty, overlap_matrix
+from .overlap import COST_OFFSET, PairTable, _edge_rows, copy_penalty, overlap_matrix, pair_depth
 from .separation import _clamp, colliding_total, reweigh, seed_rng
 
 #: a copy in the hide: (type index, variant index, x, y), grid units
@@ -63,54 +63,26 @@ N_INSERT = 1500
 POOL = 200
 
 
-@njit(cache=True, nogil=True, inline='always')
-def outside_depth(x: float, y: float, v: int, pts, start, count, ring_lo, ring_hi) -> float:
-    """Distance (grid units) from (x, y) to variant ``v``'s inner-fit region
-    when the point lies outside it (non-zero winding over its rings), 0
-    inside or on its boundary; 1e300 for an empty region.  ``pts`` rows as
-    :func:`overlap._edge_rows`."""
-    if ring_lo[v] == ring_hi[v]:
-        return 1e300
-    wind = 0
-    best = 1e300
-    for k in range(ring_lo[v], ring_hi[v]):
-        for q in range(start[k], start[k] + count[k]):
-            dx = x - pts[q, 0]
-            dy = y - pts[q, 1]
-            ex = pts[q, 2]
-            ey = pts[q, 3]
-            ay = pts[q, 1]
-            by = ay + ey
-            cr = ex * dy - ey * dx
-            wind += np.int64((ay <= y) & (by > y) & (cr > 0.0)) \
-                - np.int64((ay > y) & (by <= y) & (cr < 0.0))
-            u = min(max((dx * ex + dy * ey) * pts[q, 4], 0.0), 1.0)
-            rx = ex * u - dx
-            ry = ey * u - dy
-            best = min(best, rx * rx + ry * ry)
-    if wind != 0:
-        return 0.0
-    return np.sqrt(best)
-
-
 @njit(cache=True, nogil=True)
-def container_depths(X, Y, V, pts, start, count, ring_lo, ring_hi):
-    """:func:`outside_depth` of every copy, as an (n, 1) matrix."""
+def container_depths(X, Y, V, pts, start, count, ring_lo, ring_hi, bbox):
+    """Container depth of every copy, as an (n, 1) matrix: the penetration
+    depth (:func:`overlap.pair_depth`) of its reference point in the
+    complement of its variant's inner-fit region (:class:`_Region`)."""
     n = X.shape[0]
     out = np.zeros((n, 1))
     for i in range(n):
-        out[i, 0] = outside_depth(X[i], Y[i], V[i], pts, start, count, ring_lo, ring_hi)
+        out[i, 0] = pair_depth(X[i], Y[i], V[i], pts, start, count, ring_lo, ring_hi, bbox)
     return out
 
 
 @njit(cache=True, nogil=True)
 def _cost(i, v, x, y, X, Y, V, Wi, wc, nv, limit, order, keys, cb, wmax, coff, cscale, ramp,
-          ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start, count, ring_lo, ring_hi,
+          ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start, count, ring_lo, ring_hi,
           bbox) -> float:
     """Weighted penalty of copy ``i`` as variant ``v`` at (x, y): container
     depth (weight ``wc``) plus the pair overlaps (:func:`overlap.copy_penalty`,
     weights ``Wi``); stops early above ``limit``."""
-    d = outside_depth(x, y, v, cpts, cstart, ccount, clo, chi)
+    d = pair_depth(x, y, v, cpts, cstart, ccount, clo, chi, cbox)
     c = 0.0
     if d > 0.0:
         off = ccoff[v] if d >= ramp else ccoff[v] * d / ramp
@@ -124,7 +96,7 @@ def _cost(i, v, x, y, X, Y, V, Wi, wc, nv, limit, order, keys, cb, wmax, coff, c
 
 @njit(cache=True, nogil=True)
 def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_global, n_local, wmax, coff, cscale,
-                 ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start, count,
+                 ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start, count,
                  ring_lo, ring_hi, bbox):
     """Best (x, y, variant, penalty) for copy ``i``: its place, ``n_global``
     points of a random choice's pool (``pool[pool_lo[v]:pool_lo[v + 1]]``:
@@ -139,7 +111,7 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
     bx = X[i]
     by = Y[i]
     best = _cost(i, bv, bx, by, X, Y, V, Wi, wc, nv, 1e300, order, keys, cb, wmax, coff, cscale,
-                 ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start, count,
+                 ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start, count,
                  ring_lo, ring_hi, bbox)
     if best <= 0.0:
         return bx, by, bv, best
@@ -161,7 +133,7 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
             x = _clamp(X[i] + (np.random.random() - 0.5) * 2.0 * r * w, ib[v, 0], ib[v, 2])
             y = _clamp(Y[i] + (np.random.random() - 0.5) * 2.0 * r * h, ib[v, 1], ib[v, 3])
         c = _cost(i, v, x, y, X, Y, V, Wi, wc, nv, best, order, keys, cb, wmax, coff, cscale,
-                  ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start, count,
+                  ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start, count,
                   ring_lo, ring_hi, bbox)
         if c < best:
             best, bx, by, bv = c, x, y, v
@@ -185,7 +157,7 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
             else:
                 x, y = bx, by - sy
             c = _cost(i, bv, x, y, X, Y, V, Wi, wc, nv, best, order, keys, cb, wmax, coff,
-                      cscale, ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start,
+                      cscale, ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start,
                       count, ring_lo, ring_hi, bbox)
             if c < best:
                 best, bx, by = c, x, y
@@ -199,7 +171,7 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
 
 @njit(cache=True, nogil=True)
 def sweep_hide(hit, X, Y, V, W, WC, choice_lo, choice_flat, cb, ib, pool, pool_lo, nv, n_global, n_local, wmax,
-               coff, cscale, ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, pts, start,
+               coff, cscale, ramp, ccoff, cscale_c, cpts, cstart, ccount, clo, chi, cbox, pts, start,
                count, ring_lo, ring_hi, bbox):
     """Move each copy of ``hit`` in turn; copy i may take the variants
     ``choice_flat[choice_lo[i]:choice_lo[i + 1]]``."""
@@ -208,7 +180,7 @@ def sweep_hide(hit, X, Y, V, W, WC, choice_lo, choice_flat, cb, ib, pool, pool_l
                                   choice_flat[choice_lo[i]:choice_lo[i + 1]], cb, ib, pool,
                                   pool_lo, nv,
                                   n_global, n_local, wmax, coff, cscale, ramp, ccoff, cscale_c,
-                                  cpts, cstart, ccount, clo, chi, pts, start, count, ring_lo,
+                                  cpts, cstart, ccount, clo, chi, cbox, pts, start, count, ring_lo,
                                   ring_hi, bbox)
         X[i] = x
         Y[i] = y
@@ -216,17 +188,24 @@ def sweep_hide(hit, X, Y, V, W, WC, choice_lo, choice_flat, cb, ib, pool, pool_l
 
 
 class _Region:
-    """Inner-fit regions of the tabled variants in one hide, packed as the
-    kernels take them (rings of variant v: ``ring_lo[v] .. ring_hi[v]``) and
-    their bounding boxes ``ib`` (empty region: an empty box)."""
+    """The *complements* of the tabled variants' inner-fit regions in one hide,
+    packed as :class:`overlap.PairTable` packs no-fit polygons (rings of
+    variant v: ``ring_lo[v] .. ring_hi[v]``): a far box (CCW) around the
+    region's rings reversed.  The container depth of a reference point is
+    then its penetration depth in that complement, by the very kernel of the
+    pair overlaps (0 inside the region).  ``ib``: the regions' bounding
+    boxes (empty region: an empty box; its depth is the far box's distance)."""
 
     def __init__(self, rings: Sequence[List[np.ndarray]]):
         starts, counts, lo, hi, chunks = [], [], [], [], []
         self.ib = np.zeros((len(rings), 4))
+        far = 1e4 * max([1.0] + [float(np.abs(r).max()) for rs in rings for r in rs])
+        box = np.array([[-far, -far], [far, -far], [far, far], [-far, far]])
+        self.bbox = np.tile([-far, -far, far, far], (len(rings), 1)).astype(np.float64)
         off = 0
         for v, rs in enumerate(rings):
             lo.append(len(starts))
-            for r in rs:
+            for r in [box] + [r[::-1] for r in rs]:
                 starts.append(off)
                 counts.append(len(r))
                 chunks.append(r)
@@ -258,14 +237,14 @@ class _Region:
                 x0, y0, x1, y1 = self.ib[v]
                 cand = np.column_stack([rng.uniform(x0, x1, 8 * size), rng.uniform(y0, y1, 8 * size)])
                 d = container_depths(cand[:, 0], cand[:, 1], np.full(len(cand), v, dtype=np.int64),
-                                     self.pts, self.start, self.count, self.ring_lo, self.ring_hi)
+                                     *self.arrays())
                 pts = np.vstack([pts, cand[d[:, 0] == 0.0][:size]])
             out.append(pts)
             lo.append(lo[-1] + len(pts))
         return np.ascontiguousarray(np.vstack(out)), np.asarray(lo, dtype=np.int64)
 
     def arrays(self):
-        return self.pts, self.start, self.count, self.ring_lo, self.ring_hi
+        return self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox
 
 
 class HideSeparator:
