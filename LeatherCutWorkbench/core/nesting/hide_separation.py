@@ -42,7 +42,8 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from numba import njit
 
-from .overlap import COST_OFFSET, PairTable, _edge_rows, copy_penalty, overlap_matrix, pair_depth
+from .overlap import (COST_OFFSET, PairTable, _edge_rows, copy_penalty, overlap_matrix,
+                      pack_rings, pair_depth)
 from .separation import _clamp, colliding_total, reweigh, seed_rng
 
 #: a copy in the hide: (type index, variant index, x, y), grid units
@@ -187,6 +188,14 @@ def sweep_hide(hit, X, Y, V, W, WC, choice_lo, choice_flat, cb, ib, pool, pool_l
         V[i] = v
 
 
+def _bounds(rings: List[np.ndarray]) -> Tuple[float, float, float, float]:
+    """Bounding box of ``rings`` (none: the empty box (0, 0, -1, -1))."""
+    if not rings:
+        return 0.0, 0.0, -1.0, -1.0
+    p = np.vstack(rings)
+    return p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max()
+
+
 class _Region:
     """The *complements* of the tabled variants' inner-fit regions in one hide,
     packed as :class:`overlap.PairTable` packs no-fit polygons (rings of
@@ -197,30 +206,11 @@ class _Region:
     boxes (empty region: an empty box; its depth is the far box's distance)."""
 
     def __init__(self, rings: Sequence[List[np.ndarray]]):
-        starts, counts, lo, hi, chunks = [], [], [], [], []
-        self.ib = np.zeros((len(rings), 4))
         far = 1e4 * max([1.0] + [float(np.abs(r).max()) for rs in rings for r in rs])
         box = np.array([[-far, -far], [far, -far], [far, far], [-far, far]])
-        self.bbox = np.tile([-far, -far, far, far], (len(rings), 1)).astype(np.float64)
-        off = 0
-        for v, rs in enumerate(rings):
-            lo.append(len(starts))
-            for r in [box] + [r[::-1] for r in rs]:
-                starts.append(off)
-                counts.append(len(r))
-                chunks.append(r)
-                off += len(r)
-            hi.append(len(starts))
-            if rs:
-                allp = np.vstack(rs)
-                self.ib[v] = (allp[:, 0].min(), allp[:, 1].min(), allp[:, 0].max(), allp[:, 1].max())
-            else:
-                self.ib[v] = (0.0, 0.0, -1.0, -1.0)
-        self.pts = _edge_rows(chunks)
-        self.start = np.asarray(starts, dtype=np.int64)
-        self.count = np.asarray(counts, dtype=np.int64)
-        self.ring_lo = np.asarray(lo, dtype=np.int64)
-        self.ring_hi = np.asarray(hi, dtype=np.int64)
+        self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox = \
+            pack_rings([[box] + [r[::-1] for r in rs] for rs in rings])
+        self.ib = np.array([_bounds(rs) for rs in rings], dtype=np.float64).reshape(-1, 4)
         self.pool, self.pool_lo = self._pools(rings)
 
     def _pools(self, rings: Sequence[List[np.ndarray]], size: int = POOL):

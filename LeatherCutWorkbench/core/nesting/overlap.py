@@ -96,28 +96,7 @@ class PairTable:
                 rings[a * n + b] = rs
                 # NFP(b, a) = -NFP(a, b); negating keeps each ring's orientation
                 rings[b * n + a] = [-r for r in rs]
-        starts, counts, lo, hi, chunks = [], [], [], [], []
-        bbox = np.zeros((n * n, 4))
-        off = 0
-        for p, rs in enumerate(rings):
-            lo.append(len(starts))
-            for r in rs:
-                starts.append(off)
-                counts.append(len(r))
-                chunks.append(r)
-                off += len(r)
-            hi.append(len(starts))
-            if rs:
-                allp = np.vstack(rs)
-                bbox[p] = (allp[:, 0].min(), allp[:, 1].min(), allp[:, 0].max(), allp[:, 1].max())
-            else:
-                bbox[p] = (1.0, 1.0, -1.0, -1.0)   # empty: never overlaps
-        self.pts = _edge_rows(chunks)
-        self.start = np.asarray(starts, dtype=np.int64)
-        self.count = np.asarray(counts, dtype=np.int64)
-        self.ring_lo = np.asarray(lo, dtype=np.int64)
-        self.ring_hi = np.asarray(hi, dtype=np.int64)
-        self.bbox = bbox
+        self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox = pack_rings(rings)
         # cost of an overlapping pair (:func:`copy_penalty`): its depth offset by
         # ``COST_OFFSET`` x the larger diameter, times the pair's size factor
         area = np.array([abs(_ring_area(np.asarray(v.outer, dtype=np.float64))) for v in variants])
@@ -133,6 +112,31 @@ class PairTable:
     def arrays(self):
         """The arrays the kernels take, in their order."""
         return self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox
+
+
+def pack_rings(rings: Sequence[List[np.ndarray]]):
+    """Rings per key (a pair of variants, or a variant) packed for the kernels:
+    (edge rows, ring start row, ring length, first ring per key, end ring per
+    key, bounding box per key); an empty key gets an empty box (1, 1, -1, -1)."""
+    starts, counts, lo, hi, chunks = [], [], [], [], []
+    bbox = np.zeros((len(rings), 4))
+    off = 0
+    for p, rs in enumerate(rings):
+        lo.append(len(starts))
+        for r in rs:
+            starts.append(off)
+            counts.append(len(r))
+            chunks.append(r)
+            off += len(r)
+        hi.append(len(starts))
+        if rs:
+            allp = np.vstack(rs)
+            bbox[p] = (allp[:, 0].min(), allp[:, 1].min(), allp[:, 0].max(), allp[:, 1].max())
+        else:
+            bbox[p] = (1.0, 1.0, -1.0, -1.0)   # empty: never overlaps
+    return (_edge_rows(chunks), np.asarray(starts, dtype=np.int64),
+            np.asarray(counts, dtype=np.int64), np.asarray(lo, dtype=np.int64),
+            np.asarray(hi, dtype=np.int64), bbox)
 
 
 def _edge_rows(rings: List[np.ndarray]) -> np.ndarray:
