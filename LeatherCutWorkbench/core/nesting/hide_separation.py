@@ -38,7 +38,7 @@ Why numba: as in :mod:`overlap`, each candidate position is a loop over a
 few hundred edges (the inner-fit region) and a few dozen per overlapping
 pair, tens of thousands of candidates per second.  The kernels compile on
 their first use after this file changed (~8 s, then loaded from numba's disk
-cache in ~0.3 s); the engine's parent ends its workers at the deadline
+cache in ~0.3 s; tools/setup.sh compiles them ahead, tools/warm_jit.py); the engine's parent ends its workers at the deadline
 whatever they do, so the time budget holds even then.
 """
 
@@ -409,8 +409,8 @@ class _Kernels:
 
 
 def warm_up() -> None:
-    """Compile (or load from numba's disk cache) the kernels: called before
-    the engine's worker processes fork."""
+    """Compile (or load from numba's disk cache) the kernels on a one-copy
+    hide: called at set-up by tools/warm_jit.py."""
     sq = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
     region = _Region([[sq]])
     X, Y = np.zeros(1), np.zeros(1)
