@@ -153,6 +153,11 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
     h = cb[bv, 3] - cb[bv, 1]
     sx = 0.05 * w
     sy = 0.05 * h
+    # The descent has :func:`separation.move_copy`'s shape but not its cost call
+    # (container depth + pairs, no clamping to a rectangle) nor its floor; one
+    # shared loop would take the cost as a function argument, and numba
+    # (0.68, measured) does not disk-cache a kernel with a function argument:
+    # it would recompile in every worker process, seconds of each budget.
     # down to the contact tolerance ``ramp``: dense hides need copies that touch
     floor = max(ramp, 1e-7 * max(w, h))
     while max(sx, sy) > floor and best > 0.0:
