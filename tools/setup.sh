@@ -4,7 +4,7 @@
 #   2. a venv in .venv made from /usr/bin/python3 with --system-site-packages;
 #   3. the pinned Python dependencies and the project itself (editable);
 #   4. FreeCAD importable inside the venv (a .pth file);
-#   5. the nesting engine's numba kernels compiled once (tools/warm_jit.py);
+#   5. the nesting engine's numba kernels compiled once (tools/warm_jit.py: both cache folders);
 #   6. the workbench linked into FreeCAD's user Mod folder.
 # Re-running only redoes a step whose inputs changed.
 set -euo pipefail

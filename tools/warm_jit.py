@@ -9,6 +9,9 @@ tiny real input: the module warm-ups (:func:`convex_sums.warm_up`,
 :func:`hide_separation.warm_up`) and the strip separator on a row of two
 L-shaped parts, set up as :mod:`strip_shrink` does.
 
+Both numba cache folders a nest may use are filled: next to the sources
+(numba's default) and the path planner's (``core.pathplan.jit``).
+
 Exit status 0 when compiled, 3 when numba has no writable cache folder (the
 caller then only prints a message: nothing is lost but the first run's
 seconds).
@@ -17,6 +20,7 @@ seconds).
 from __future__ import annotations
 
 import os
+import subprocess
 import sys
 import time
 
@@ -59,7 +63,14 @@ def main() -> int:
     Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0, inst.y1,
               inst.x0, inst.eps).warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
     warm_up()
-    print(f"warm_jit: nesting kernels ready in {time.monotonic() - t0:.1f} s")
+    print(f"warm_jit: nesting kernels ready in {time.monotonic() - t0:.1f} s"
+          f" ({os.environ.get('NUMBA_CACHE_DIR') or 'next to the sources'})")
+    if "NUMBA_CACHE_DIR" not in os.environ:
+        # a process that imported the path planner first (the workbench) caches
+        # the nesting kernels in the planner's folder instead: warm that one too
+        from LeatherCutWorkbench.core.pathplan.jit import cache_dir
+        os.environ["NUMBA_CACHE_DIR"] = cache_dir()
+        return subprocess.run([sys.executable, os.path.abspath(__file__)]).returncode
     return 0
 
 
