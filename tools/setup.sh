@@ -4,7 +4,8 @@
 #   2. a venv in .venv made from /usr/bin/python3 with --system-site-packages;
 #   3. the pinned Python dependencies and the project itself (editable);
 #   4. FreeCAD importable inside the venv (a .pth file);
-#   5. the workbench linked into FreeCAD's user Mod folder.
+#   5. the nesting engine's numba kernels compiled once (tools/warm_jit.py: both cache folders);
+#   6. the workbench linked into FreeCAD's user Mod folder.
 # Re-running only redoes a step whose inputs changed.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -48,6 +49,20 @@ echo "/usr/lib/freecad-python3/lib" > "$site/leathercut-freecad.pth"
 if [ ! -x "${LEATHERCUT_RS274_DIR:-$HOME/.cache/leathercut/rs274}/root/usr/bin/rs274" ]; then
   echo "setup: fetching the LinuxCNC rs274 interpreter for the post-processor tests"
   bash "$here/tools/get_rs274.sh" || echo "setup: warning: could not fetch rs274 (tests/test_post_rs274.py needs it)" >&2
+fi
+
+# Compile the nesting engine's numba kernels now, not inside the first nest's time
+# budget (~8-15 s CPU); redone only when their sources changed (numba's cache keys
+# on the files' contents and times). Optional: without a writable cache folder it warns.
+jit_stamp="$venv/.leathercut-jit-stamp"
+jit_want="$( (cat LeatherCutWorkbench/core/nesting/*.py; stat -c '%n %Y' LeatherCutWorkbench/core/nesting/*.py) | sha256sum | cut -d' ' -f1)"
+if [ ! -f "$jit_stamp" ] || [ "$(cat "$jit_stamp")" != "$jit_want" ]; then
+  echo "setup: compiling the nesting kernels (numba)"
+  if "$venv/bin/python" "$here/tools/warm_jit.py"; then
+    echo "$jit_want" > "$jit_stamp"
+  else
+    echo "setup: warning: nesting kernels not compiled ahead (the first nest compiles them)" >&2
+  fi
 fi
 
 # Link the workbench into FreeCAD's user Mod folder (FreeCAD computes the folder).

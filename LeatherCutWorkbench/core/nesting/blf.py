@@ -134,6 +134,16 @@ class Placer:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
 
+    def hide_ifp(self, spec_index: int, vi: int) -> List[IntPath]:
+        """Inner-fit region of variant ``vi`` on hide ``spec_index`` (the one
+        the fill uses, cached; for :mod:`hide_separation`)."""
+        saved = self.bin_order
+        self.bin_order = [spec_index]
+        try:
+            return self._ifp(0, self.variants[vi], _OPEN_STRIP)
+        finally:
+            self.bin_order = saved
+
     def _region_fit(self, spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
         """``fit`` cut down to where each stricter region of ``v``'s part lies in
         the hide region of its grade (exact, zone borders need no margin).

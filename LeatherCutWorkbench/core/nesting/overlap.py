@@ -30,7 +30,7 @@ on disk (``cache=True``).
 from __future__ import annotations
 
 import time
-from typing import List, Sequence
+from typing import Callable, List, Optional, Sequence
 
 import numpy as np
 import pyclipper
@@ -60,9 +60,14 @@ class PairTable:
     ring ``k`` is rows ``pts[start[k] : start[k] + count[k]]`` (x, y of each point, then the
     edge to the next point and its 1 / squared length: :func:`_edge_rows`; float64 grid units,
     outer rings CCW, holes CW: the non-zero rule).  ``bbox[p]`` bounds them;
-    a translation outside it cannot overlap."""
+    a translation outside it cannot overlap.
 
-    def __init__(self, variants: Sequence[Variant], deadline: float = float("inf")):
+    ``pair_rings(a, b)`` (optional) gives pair (a, b)'s rings instead of
+    :func:`pair_nfp` (the hide separator passes the bottom-left fill's cached
+    no-fit polygons of a few variants, :mod:`hide_separation`)."""
+
+    def __init__(self, variants: Sequence[Variant], deadline: float = float("inf"),
+                 pair_rings: Optional[Callable[[int, int], List[np.ndarray]]] = None):
         n = len(variants)
         self.n = n
         #: False when ``deadline`` (``time.monotonic()``) passed before every pair was built
@@ -73,6 +78,10 @@ class PairTable:
                 if time.monotonic() > deadline:     # per pair: one row can take seconds
                     self.complete = False
                     break
+                if pair_rings is not None:
+                    rs = [np.asarray(r, dtype=np.float64) for r in pair_rings(a, b) if len(r) >= 3]
+                    rings[a * n + b], rings[b * n + a] = rs, [-r for r in rs]
+                    continue
                 paths = pair_nfp(variants[a], variants[b])
                 if a != b and (variants[a].holes or variants[b].holes):
                     # pair_nfp cuts out only a's holes (b inside a); -NFP(b, a) cuts
@@ -89,28 +98,7 @@ class PairTable:
                 rings[b * n + a] = [-r for r in rs]
             if not self.complete:
                 break
-        starts, counts, lo, hi, chunks = [], [], [], [], []
-        bbox = np.zeros((n * n, 4))
-        off = 0
-        for p, rs in enumerate(rings):
-            lo.append(len(starts))
-            for r in rs:
-                starts.append(off)
-                counts.append(len(r))
-                chunks.append(r)
-                off += len(r)
-            hi.append(len(starts))
-            if rs:
-                allp = np.vstack(rs)
-                bbox[p] = (allp[:, 0].min(), allp[:, 1].min(), allp[:, 0].max(), allp[:, 1].max())
-            else:
-                bbox[p] = (1.0, 1.0, -1.0, -1.0)   # empty: never overlaps
-        self.pts = _edge_rows(chunks)
-        self.start = np.asarray(starts, dtype=np.int64)
-        self.count = np.asarray(counts, dtype=np.int64)
-        self.ring_lo = np.asarray(lo, dtype=np.int64)
-        self.ring_hi = np.asarray(hi, dtype=np.int64)
-        self.bbox = bbox
+        self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox = pack_rings(rings)
         # cost of an overlapping pair (:func:`copy_penalty`): its depth offset by
         # ``COST_OFFSET`` x the larger diameter, times the pair's size factor
         area = np.array([abs(_ring_area(np.asarray(v.outer, dtype=np.float64))) for v in variants])
@@ -126,6 +114,31 @@ class PairTable:
     def arrays(self):
         """The arrays the kernels take, in their order."""
         return self.pts, self.start, self.count, self.ring_lo, self.ring_hi, self.bbox
+
+
+def pack_rings(rings: Sequence[List[np.ndarray]]):
+    """Rings per key (a pair of variants, or a variant) packed for the kernels:
+    (edge rows, ring start row, ring length, first ring per key, end ring per
+    key, bounding box per key); an empty key gets an empty box (1, 1, -1, -1)."""
+    starts, counts, lo, hi, chunks = [], [], [], [], []
+    bbox = np.zeros((len(rings), 4))
+    off = 0
+    for p, rs in enumerate(rings):
+        lo.append(len(starts))
+        for r in rs:
+            starts.append(off)
+            counts.append(len(r))
+            chunks.append(r)
+            off += len(r)
+        hi.append(len(starts))
+        if rs:
+            allp = np.vstack(rs)
+            bbox[p] = (allp[:, 0].min(), allp[:, 1].min(), allp[:, 0].max(), allp[:, 1].max())
+        else:
+            bbox[p] = (1.0, 1.0, -1.0, -1.0)   # empty: never overlaps
+    return (_edge_rows(chunks), np.asarray(starts, dtype=np.int64),
+            np.asarray(counts, dtype=np.int64), np.asarray(lo, dtype=np.int64),
+            np.asarray(hi, dtype=np.int64), bbox)
 
 
 def _edge_rows(rings: List[np.ndarray]) -> np.ndarray:

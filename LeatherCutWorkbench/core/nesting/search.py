@@ -220,7 +220,8 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
                  budget: Budget, quick: bool = False):
     """The worker's first layout (its own start order, never abandoned), then
     the other start orders while they are cheap; returns (cost, order, trace, evals).
-    ``quick`` (always on worker 0): the first fill tries four orientations only."""
+    ``quick`` (always on worker 0): the first fill tries four orientations only
+    (and, with ``quick``, the other start orders too)."""
     starts = start_orders(problem, copies)
     k = worker % len(starts)
     starts = starts[k:] + starts[:k]
@@ -255,7 +256,10 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     for order in starts[1:]:
         if not cheap or budget.done(evals):
             break
-        tr = placer.place(order)
+        # the copy-to-hide worker (``quick``) re-fills every hide itself and only
+        # needs their hide count and copies: four orientations (Baldacci Test5
+        # under load: its search started with 50 s of 60 left instead of 20)
+        tr = placer.place(order, variant_cap=4 if quick else None)
         evals += 1
         if tr is None:
             break
@@ -394,7 +398,7 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
             holder[0], holder[1] = (c, seq, Trace(placements, [])), order
             budget.improved(c, seq, _out(placements, order))
 
-    s = AssignmentSearch(problem, placer, rng, _mutate, expired)
+    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end)
     st = s.start(hides, genes)
     if st is not None:
         s.run(st, net, on_better, item_area)
