@@ -103,3 +103,17 @@ def test_cli_quick_exit_writes_the_whole_report_and_outputs(tmp_path):
     d = json.loads(r.stdout)                      # complete: flushed before os._exit
     assert d["metrics"]["placed_count"] == 43 and d["outputs"] == {"layout": str(lay)}
     assert len(json.loads(lay.read_text())["items"]) == 43
+
+
+def test_started_at_survives_replace_and_is_no_document_property():
+    """``started_at`` was ``field(init=False)`` to keep it out of the job's
+    properties, so ``dataclasses.replace`` dropped it and every copy of the
+    options counted its budget from the copy.  It is transient field metadata
+    now: copies keep it and the Auto-nest panel's properties still leave it out."""
+    import dataclasses
+    from LeatherCutWorkbench.document import options as doc_options
+    opts = NestOptions(time_budget=7, started_at=123.5)
+    assert dataclasses.replace(opts, spacing=2.0).started_at == 123.5
+    nest_stage = next(st for st in doc_options.STAGE_OPTIONS if st.key == "Nest")
+    names = [f[0] for f in doc_options.fields_of(nest_stage)]
+    assert "started_at" not in names and "time_budget" in names

@@ -87,7 +87,7 @@ def fields_of(stage: StageOptions) -> List[Tuple[str, str, str, Any]]:
         return []
     out = []
     for f in dataclasses.fields(cls):
-        if not f.init or f.name in SPECIAL_FIELDS.get(stage.key, ()):
+        if f.metadata.get("transient") or f.name in SPECIAL_FIELDS.get(stage.key, ()):
             continue
         d = _default(f)
         kind = _kind(d)

@@ -91,7 +91,9 @@ class NestOptions:
       A-D, A best; see :mod:`core.dxfimport.grades`), replacing the part's own.
     * ``started_at`` -- ``time.monotonic()`` when the user asked for the nest
       (the CLI: before reading the drawing); the time budget counts from there.
-      None: from the call of :func:`nest`.  Set as an attribute.
+      None: from the call of :func:`nest`.  Transient (field metadata): a
+      moment of this process, so it is not a document property; it survives
+      :func:`dataclasses.replace`.
     """
 
     container: ContainerSpec = field(default_factory=ContainerSpec)
@@ -109,7 +111,7 @@ class NestOptions:
     chord_tol: float = 0.05
     tolerance: float = 1e-3
     grades: Dict[str, Any] = field(default_factory=dict)
-    started_at: Optional[float] = field(default=None, init=False)
+    started_at: Optional[float] = field(default=None, metadata={"transient": True})
 
     def part_grade(self, part_id: str, name: str, own: int) -> int:
         """The grade a part nests with: ``grades`` by id, then by name, else its own."""

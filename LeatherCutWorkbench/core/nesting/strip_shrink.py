@@ -455,8 +455,8 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     share = 1.0 if kind == "sheet" else _search_share(parts)
     # the share splits the time left after reading the drawing (counted from t0)
     spent = min(max(time.monotonic() - t0, 0.0), options.time_budget)
-    first = dataclasses.replace(options, time_budget=spent + (options.time_budget - spent) * share)
-    first.started_at = t0                 # replace() drops it
+    first = dataclasses.replace(options, started_at=t0,
+                                time_budget=spent + (options.time_budget - spent) * share)
     stall_share = STALL_SHARE if kind == "strip" else SHEET_STALL_SHARE
     stall = _Stall(max(STALL_MIN_S, stall_share * options.time_budget), on_best, stop)
     layout = run_own(parts, first, progress, stall.on_best, stall.stop)
