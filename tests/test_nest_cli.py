@@ -50,7 +50,7 @@ def test_esicup_strip_report_and_outputs(capsys, tmp_path):
     assert min(xs) >= -1e-3 and max(xs) <= m["strip_length_mm"] + 1e-3  # checker tolerance
     assert min(ys) >= -1e-3 and max(ys) <= 40.004 + 1e-3
     doc = ezdxf.readfile(dxf)
-    assert len(doc.modelspace().query("LINE[layer=='PARTS']")) >= 43 * 4
+    assert len(doc.modelspace().query("LWPOLYLINE[layer=='PARTS']")) == 43   # one per contour
     assert open(svg).read().startswith("<svg")
 
 

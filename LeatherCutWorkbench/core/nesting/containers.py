@@ -165,11 +165,11 @@ def usable_region(c: Container, grade: int,
 
 
 def net_area(c: Container) -> float:
-    """Outline area minus defects (mm^2)."""
-    g: BaseGeometry = Polygon(c.outline)
-    for d in c.defects:
-        g = g.difference(Polygon(d))
-    return g.area
+    """Outline area minus defects (mm^2); overlapping defects count once."""
+    g = Polygon(c.outline)
+    if not c.defects:
+        return g.area
+    return g.difference(unary_union([Polygon(d) for d in c.defects])).area
 
 
 def polygons_of(g: BaseGeometry) -> List[Polygon]:

@@ -492,32 +492,20 @@ def _to_layout(parts: Sequence[Part], types: Sequence[PieceType], variants, orde
 
 
 def material_grades(layout: Layout, placed: Sequence[Polygon], grade: Dict[str, int],
-                    tol: float) -> List[Dict[str, object]]:
+                    tol: float, cache: Dict[tuple, tuple]) -> List[Dict[str, object]]:
     """Per placement on a hide: the part's grade and the grade of the material
-    it lies on (the lowest grade under it: the best g whose usable region
-    holds the whole placed shape within ``tol`` x perimeter)."""
-    from .containers import usable_region
+    it lies on (:func:`part_regions.material_grade`; ``cache`` keeps the
+    hides' graded regions)."""
+    from .part_regions import material_grade
     conts = {c.id: c for c in layout.containers}
-    regions: Dict[tuple, object] = {}
-    out: List[Dict[str, object]] = []
-    for pl, g in zip(layout.placements, placed):
-        c = conts[pl.container]
-        levels = sorted({c.base_grade} | {zg for zg, _ in c.zones}, reverse=True)
-        lies_on = min(levels)
-        for lv in levels:
-            key = (c.id, lv)
-            if key not in regions:
-                regions[key] = usable_region(c, lv)
-            if g.difference(regions[key]).area <= tol * g.exterior.length:
-                lies_on = lv
-                break
-        out.append({"part": pl.part_id, "copy": pl.copy, "container": pl.container,
-                    "part_grade": grade.get(pl.part_id, 0), "material_grade": lies_on})
-    return out
+    return [{"part": pl.part_id, "copy": pl.copy, "container": pl.container,
+             "part_grade": grade.get(pl.part_id, 0),
+             "material_grade": material_grade(g, conts[pl.container], tol, cache)}
+            for pl, g in zip(layout.placements, placed)]
 
 
 def _add_region_grades(parts: Sequence[Part], layout: Layout, rows: List[Dict[str, object]],
-                       options: NestOptions) -> None:
+                       options: NestOptions, cache: Dict[tuple, tuple]) -> None:
     """Rows of ``material_grades`` for parts with graded regions get ``regions``:
     per piece (``region k`` / ``rest``) the grade it needs and the grade it lies on."""
     from .part_regions import pieces, region_grades
@@ -526,7 +514,6 @@ def _add_region_grades(parts: Sequence[Part], layout: Layout, rows: List[Dict[st
         return
     conts = {c.id: c for c in layout.containers}
     split = {pid: pieces(p, options.chord_tol) for pid, p in by_id.items()}
-    cache: Dict[tuple, object] = {}
     for pl, row in zip(layout.placements, rows):
         if pl.part_id not in by_id:
             continue
@@ -555,8 +542,9 @@ def fill_metrics(parts: Sequence[Part], layout: Layout, options: NestOptions) ->
         placed.append(g)
     metrics = layout.metrics
     if spec.kind == "hide":
-        metrics["grades"] = material_grades(layout, placed, grade, options.tolerance)
-        _add_region_grades(parts, layout, metrics["grades"], options)
+        regions: Dict[tuple, tuple] = {}        # (hide, grade) -> usable region, prepared
+        metrics["grades"] = material_grades(layout, placed, grade, options.tolerance, regions)
+        _add_region_grades(parts, layout, metrics["grades"], options, regions)
     per: List[Dict[str, object]] = []
     if spec.kind == "strip":
         c = layout.containers[0]

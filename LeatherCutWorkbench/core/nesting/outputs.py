@@ -12,8 +12,8 @@ not closed (first vertex not repeated), outer rings CCW, holes CW.
 
 The DXF (ezdxf, R2010, $INSUNITS mm) puts each container on its own offset
 (sheets side by side, 10 % apart) with layers ``CONTAINER``, ``DEFECT``,
-``ZONE_<g>``, the transformed part contours on ``PARTS`` (arcs stay arcs and
-circles) and each copy's id ``<part>#<copy>`` as TEXT on ``LABELS``.
+``ZONE_<g>``, the transformed part contours on ``PARTS`` (one closed LWPOLYLINE
+per contour with its arcs as exact bulges, a lone circle as a CIRCLE) and each copy's id ``<part>#<copy>`` as TEXT on ``LABELS``.
 
 Remnants (``--remnant-out``): the unused material of the hides, written as a
 hide DXF the next ``nest --hide`` reads (:func:`remnants`, :func:`write_hide_dxf`).
@@ -23,12 +23,13 @@ from __future__ import annotations
 
 import html
 import json
+import math
 from typing import Dict, List, Sequence, Tuple
 
 from shapely.geometry import Polygon
 
 from ..geometry import ArcSeg, LineSeg
-from ..model import Container, Layout, Part
+from ..model import Container, Contour, Layout, Part
 from . import placed_parts
 
 
@@ -71,7 +72,7 @@ def _offsets(layout: Layout) -> Dict[str, Tuple[float, float]]:
 
 
 def write_dxf(path: str, parts: Sequence[Part], layout: Layout) -> None:
-    """Nested drawing: containers, defects, zones and part contours (arcs kept)."""
+    """Nested drawing: containers, defects, zones and part contours (arcs kept as bulges)."""
     import ezdxf
 
     doc = ezdxf.new("R2010", setup=False)
@@ -97,15 +98,7 @@ def write_dxf(path: str, parts: Sequence[Part], layout: Layout) -> None:
     for pl, pp in zip(layout.placements, placed_parts(parts, layout)):
         dx, dy = off.get(pl.container, (0.0, 0.0))
         for cont in pp.contours():
-            for s in cont.segments:
-                if isinstance(s, ArcSeg):
-                    _add_arc(msp, s, dx, dy)
-                elif isinstance(s, LineSeg):
-                    msp.add_line((s.start[0] + dx, s.start[1] + dy), (s.end[0] + dx, s.end[1] + dy),
-                                 dxfattribs={"layer": "PARTS"})
-                else:
-                    msp.add_lwpolyline([(x + dx, y + dy) for x, y in s.points()],
-                                       dxfattribs={"layer": "PARTS"})
+            _add_contour(msp, cont, dx, dy)
         cx, cy = Polygon(pp.outer.points(0.5)).representative_point().coords[0]
         msp.add_text(f"{pp.id}", height=max(1.0, _size(pp) * 0.05),
                      dxfattribs={"layer": "LABELS"}).set_placement((cx + dx, cy + dy))
@@ -117,14 +110,33 @@ def _size(p: Part) -> float:
     return min(x1 - x0, y1 - y0)
 
 
-def _add_arc(msp, s: ArcSeg, dx: float, dy: float) -> None:
-    c = (s.center[0] + dx, s.center[1] + dy)
-    if abs(s.sweep) >= 360.0 - 1e-9:
-        msp.add_circle(c, s.radius, dxfattribs={"layer": "PARTS"})
+def _add_contour(msp, cont: Contour, dx: float, dy: float) -> None:
+    """One closed contour as one entity on ``PARTS``: a lone full circle as a
+    CIRCLE, else an LWPOLYLINE whose arcs are bulges (exact, tan(sweep / 4))
+    and whose curves are flattened (0.01 mm chords).  One entity per contour,
+    not per segment: ezdxf spends ~70 us per entity, and a hide layout of
+    12 000 segments took 0.8 s quiet, 3 s on a loaded machine."""
+    segs = cont.segments
+    if len(segs) == 1 and isinstance(segs[0], ArcSeg) and abs(segs[0].sweep) >= 360.0 - 1e-9:
+        s = segs[0]
+        msp.add_circle((s.center[0] + dx, s.center[1] + dy), s.radius,
+                       dxfattribs={"layer": "PARTS"})
         return
-    a0, a1 = (s.start_angle, s.start_angle + s.sweep) if s.sweep > 0 else \
-        (s.start_angle + s.sweep, s.start_angle)
-    msp.add_arc(c, s.radius, a0 % 360.0, a1 % 360.0, dxfattribs={"layer": "PARTS"})
+    verts: List[Tuple[float, float, float]] = []
+    for s in segs:
+        if isinstance(s, ArcSeg):
+            # a bulge spans less than a full turn: split a 360 deg arc in two
+            halves = [s] if abs(s.sweep) < 360.0 - 1e-9 else \
+                [ArcSeg(s.center, s.radius, s.start_angle, s.sweep / 2),
+                 ArcSeg(s.center, s.radius, s.start_angle + s.sweep / 2, s.sweep / 2)]
+            for h in halves:
+                x, y = h.start
+                verts.append((x + dx, y + dy, math.tan(math.radians(h.sweep) / 4.0)))
+        elif isinstance(s, LineSeg):
+            verts.append((s.start[0] + dx, s.start[1] + dy, 0.0))
+        else:
+            verts.extend((x + dx, y + dy, 0.0) for x, y in s.points(0.01)[:-1])
+    msp.add_lwpolyline(verts, format="xyb", close=True, dxfattribs={"layer": "PARTS"})
 
 
 def render_svg(parts: Sequence[Part], layout: Layout, title: str = "") -> str:

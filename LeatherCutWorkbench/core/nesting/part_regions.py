@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from typing import Dict, List, Optional, Sequence, Tuple
 
-from shapely import affinity
+from shapely import affinity, prepared
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.prepared import prep
@@ -64,17 +64,21 @@ def nesting_grade(part: Part) -> int:
 
 
 def material_grade(shape: BaseGeometry, c: Container, tol: float,
-                   cache: Optional[Dict[Tuple[str, int], BaseGeometry]] = None) -> int:
+                   cache: Optional[Dict[Tuple[str, int], tuple]] = None) -> int:
     """The lowest hide grade under ``shape`` (placed, mm): the best level g of
     ``c`` whose usable region holds it within ``tol`` x its perimeter (0 when
-    it covers a defect or leaves the outline)."""
+    it covers a defect or leaves the outline).  ``cache`` keeps each level's
+    region and its prepared form per hide: most shapes lie wholly inside, which
+    the prepared ``covers`` answers without the difference."""
     levels = sorted({c.base_grade} | {zg for zg, _ in c.zones}, reverse=True)
     cache = {} if cache is None else cache
     for lv in levels:
         key = (c.id, lv)
         if key not in cache:
-            cache[key] = usable_region(c, lv)
-        if shape.difference(cache[key]).area <= tol * shape.length:
+            region = usable_region(c, lv)
+            cache[key] = (region, prepared.prep(region))
+        region, prep = cache[key]
+        if prep.covers(shape) or shape.difference(region).area <= tol * shape.length:
             return lv
     return 0
 
