@@ -97,7 +97,7 @@ class Placer:
         """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""
         spec = self._spec(b)
         if spec.kind == "hide":
-            from .nfp import obstacle_forms, region_ifp
+            from .nfp import region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
             key = (self._spec_index(b) * 100003 + rk, v.index, True)
             hit = self._ifp_cache.get(key)
@@ -110,19 +110,15 @@ class Placer:
                 if hit is None:
                     outers, obstacles = spec.regions[rk] if exact or rk not in spec.coarse \
                         else spec.coarse[rk]
-                    fk = (key[0], exact or rk not in spec.coarse)
-                    if fk not in self._ob_forms:
-                        self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
                     # exact: the true ring against the defects; its convex hull in the
                     # hull of the hide, minus the pockets (a hide is nearly convex)
-                    if fk not in self._pockets:
-                        self._pockets[fk] = HullPockets(outers)
-                    fits = self._pockets[fk].ifp(v.core_hull)
+                    forms, pockets = self._region_forms(
+                        (key[0], exact or rk not in spec.coarse), outers, obstacles)
                     hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
-                                     self._ob_forms[fk], fits=fits)
+                                     forms, fits=pockets.ifp(v.core_hull))
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
-                        hit = self._region_fit(spec, hit, rc, v)
+                        hit = self._region_fit(self._spec_index(b), hit, rc, v)
                     self._ifp_cache[key] = hit
             return hit
         x0, y0, x1, y1 = spec.rect
@@ -144,18 +140,29 @@ class Placer:
         finally:
             self.bin_order = saved
 
-    def _region_fit(self, spec: BinSpec, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
+    def _region_forms(self, fk: tuple, outers: List[IntPath],
+                      obstacles: List[IntPath]) -> Tuple[list, HullPockets]:
+        """The obstacle edge forms and the hull and pockets of a hide region,
+        built once per ``fk`` = (hide spec index * 100003 + region key, exact)."""
+        from .nfp import obstacle_forms
+        if fk not in self._ob_forms:
+            self._ob_forms[fk] = [obstacle_forms(ob) for ob in obstacles]
+        if fk not in self._pockets:
+            self._pockets[fk] = HullPockets(outers)
+        return self._ob_forms[fk], self._pockets[fk]
+
+    def _region_fit(self, sb: int, fit: List[IntPath], rc, v: Variant) -> List[IntPath]:
         """``fit`` cut down to where each stricter region of ``v``'s part lies in
-        the hide region of its grade (exact, zone borders need no margin).
-        The region's hull, pockets and obstacle forms are kept per hide and
-        grade (:class:`HullPockets` with the ring's own convex pieces instead
+        the region of its grade on hide spec ``sb`` (exact, zone borders need no
+        margin).  The region's hull, pockets and obstacle forms are kept per hide
+        and grade (:class:`HullPockets` with the ring's own convex pieces instead
         of a sweep along the hide outline), and each region ring is replaced
         by a ring containing it with few vertices (:func:`hide_shapes.superset_rings`,
         as the variants' outlines are): Baldacci Test10's 200-400-vertex
         region rings (60-100 convex pieces) took ~1 s per hide and variant."""
-        from .nfp import obstacle_forms, region_ifp
+        from .nfp import region_ifp
         from .shapes import convex_hull
-        sb = next((i for i, s in enumerate(self.bin_specs) if s is spec), -1)
+        spec = self.bin_specs[sb]
         rings = self._region_rings.get(v.index)
         if rings is None:
             rings = self._region_rings[v.index] = superset_rings(
@@ -163,13 +170,7 @@ class Placer:
         for g, ring in rings:
             rk = spec.grade_key.get(g, g)
             outers, obstacles = spec.regions[rk]
-            fk = (sb * 100003 + rk, True)
-            if sb < 0 or fk not in self._pockets:
-                pockets, forms = HullPockets(outers), [obstacle_forms(ob) for ob in obstacles]
-                if sb >= 0:
-                    self._pockets[fk], self._ob_forms[fk] = pockets, forms
-            else:
-                pockets, forms = self._pockets[fk], self._ob_forms[fk]
+            forms, pockets = self._region_forms((sb * 100003 + rk, True), outers, obstacles)
             inner = region_ifp(outers, obstacles, ring, forms,
                                fits=pockets.ifp(convex_hull(ring), ring))
             if not inner:

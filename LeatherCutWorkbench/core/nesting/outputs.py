@@ -13,7 +13,8 @@ not closed (first vertex not repeated), outer rings CCW, holes CW.
 The DXF (ezdxf, R2010, $INSUNITS mm) puts each container on its own offset
 (sheets side by side, 10 % apart) with layers ``CONTAINER``, ``DEFECT``,
 ``ZONE_<g>``, the transformed part contours on ``PARTS`` (one closed LWPOLYLINE
-per contour with its arcs as exact bulges, a lone circle as a CIRCLE) and each copy's id ``<part>#<copy>`` as TEXT on ``LABELS``.
+per contour with its arcs as exact bulges, a lone circle as a CIRCLE) and each
+copy's id ``<part>#<copy>`` as TEXT on ``LABELS``.
 
 Remnants (``--remnant-out``): the unused material of the hides, written as a
 hide DXF the next ``nest --hide`` reads (:func:`remnants`, :func:`write_hide_dxf`).

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from typing import Dict, List, Optional, Sequence, Tuple
 
-from shapely import affinity, prepared
+from shapely import affinity
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.prepared import prep
@@ -76,9 +76,9 @@ def material_grade(shape: BaseGeometry, c: Container, tol: float,
         key = (c.id, lv)
         if key not in cache:
             region = usable_region(c, lv)
-            cache[key] = (region, prepared.prep(region))
-        region, prep = cache[key]
-        if prep.covers(shape) or shape.difference(region).area <= tol * shape.length:
+            cache[key] = (region, prep(region))
+        region, inside = cache[key]
+        if inside.covers(shape) or shape.difference(region).area <= tol * shape.length:
             return lv
     return 0
 
