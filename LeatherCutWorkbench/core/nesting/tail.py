@@ -29,6 +29,7 @@ import time
 from contextlib import contextmanager
 from typing import Dict, Iterator, List, Optional, Sequence, Tuple
 
+from ..geometry import signed_area
 from ..model import Layout, Part
 from .checker import check_layout
 from .options import NestOptions
@@ -75,7 +76,7 @@ class Tail:
             # the hides used: about twice the parts' bounding-box area (at most all)
             verts = sum(len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
                         for h in spec.hides)
-            hide_area = sum(abs(_ring_area(h.outline)) for h in spec.hides) or 1.0
+            hide_area = sum(abs(signed_area(h.outline)) for h in spec.hides) or 1.0
             part_area = sum(_box_area(p) * max(p.quantity, 0) for p in parts)
             self._container_vertices = verts * min(1.0, 2.0 * part_area / hide_area)
         else:
@@ -147,11 +148,6 @@ def _vertices(p: Part) -> int:
 def _box_area(p: Part) -> float:
     x0, y0, x1, y1 = p.outer.bbox
     return (x1 - x0) * (y1 - y0)
-
-
-def _ring_area(ring) -> float:
-    return 0.5 * sum(ring[i - 1][0] * ring[i][1] - ring[i][0] * ring[i - 1][1]
-                     for i in range(len(ring)))
 
 
 def _options_key(o: NestOptions) -> tuple:
