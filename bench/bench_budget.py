@@ -1,16 +1,21 @@
 """Whole-process wall time of ``leathercut nest`` against its time budget.
 
-    .venv/bin/python bench/bench_budget.py [--time 10] [--cases deepnest,wm,...] [--repeat 1]
-                                           [--outputs] [--load N]
+    .venv/bin/python bench/bench_budget.py [--time 10] [--cases deepnest,wm,...|all] [--repeat 1]
+                                           [--outputs] [--load N] [--root DIR]
 
-Each case runs the real CLI (``.venv/bin/leathercut``, so the budget counts
-from the process start) under ``/usr/bin/time -v`` and prints one Markdown row:
-wall s, the limit T + 10 % + 1 s, the margin (limit - wall), the engine's
-``metrics.time_s``, max RSS, the result and the 1-minute load average at the
-start.  ``--outputs`` also writes the layout JSON and the DXF (part of the
-tail the budget must cover); ``--load N`` starts N busy CPU processes for the
-runs and ends them afterwards.  The DXF samples are read from
-``/work/shared/samples/dxf/`` (cases whose file is missing are skipped).
+Each case runs the real CLI under ``/usr/bin/time -v`` (through
+``bench/leathercut_first_layout.py``, which starts like the installed
+``leathercut`` script, so the budget counts from the process start, and
+reports when the first valid layout reached the parent process) and prints
+one Markdown row: wall s, the limit T + 10 % + 1 s, the margin (limit -
+wall), the first layout's time (s since the process start), the engine's
+``metrics.time_s``, max RSS, the result and the 1-minute load average at
+the start.  ``--outputs`` also writes the layout JSON and the DXF (part of
+the tail the budget must cover); ``--load N`` starts N busy CPU processes
+for the runs and ends them afterwards; ``--root DIR`` runs another checkout's
+code with its own ``.venv`` (e.g. ``/work/main`` for a before/after table;
+read only).  ``--cases all``: every case below.  The DXF samples are read
+from ``/work/shared/samples/dxf/`` (cases whose file is missing are skipped).
 """
 
 from __future__ import annotations
@@ -46,6 +51,13 @@ CASES: Dict[str, tuple] = {
     "test2": ("Baldacci Test2 (hides)", ["--esicup", f"{HIDES}/Test2.json"]),
     "test10": ("Baldacci Test10 (hides)", ["--esicup", f"{HIDES}/Test10.json"]),
 }
+CASES.update({f"test{k}": (f"Baldacci Test{k} (hides)", ["--esicup", f"{HIDES}/Test{k}.json"])
+              for k in range(3, 10)})
+CASES["scarpa"] = ("Baldacci Scarpa (hides)", ["--esicup", f"{HIDES}/Scarpa.json"])
+#: the order of ``--cases all``
+ALL = ["deepnest", "deepnest-sp3", "wm", "wm-rot", "gmx", "test1", "test2", "test3", "test4",
+       "test5", "test6", "test7", "test8", "test9", "test10", "scarpa"]
+WRAPPER = os.path.join(HERE, "leathercut_first_layout.py")
 
 
 def load_average() -> float:
@@ -66,19 +78,22 @@ def _seconds(clock: str) -> float:
     return s
 
 
-def run_case(name: str, budget: float, outputs: bool) -> Dict[str, object]:
+def run_case(name: str, budget: float, outputs: bool, root: str = ROOT) -> Dict[str, object]:
     label, args = CASES[name]
-    exe = os.path.join(ROOT, ".venv", "bin", "leathercut")
+    exe = os.path.join(root, ".venv", "bin", "python")
+    env = dict(os.environ, PYTHONPATH=root)
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [exe, "nest", *args, "--time", f"{budget:g}", "--json"]
+        cmd = [exe, WRAPPER, "nest", *args, "--time", f"{budget:g}", "--json"]
         if outputs:
             cmd += ["--layout-out", os.path.join(tmp, "l.json"), "--dxf-out", os.path.join(tmp, "l.dxf")]
         load = load_average()
-        r = subprocess.run(["/usr/bin/time", "-v", *cmd], capture_output=True, text=True)
+        r = subprocess.run(["/usr/bin/time", "-v", *cmd], capture_output=True, text=True,
+                           cwd=root, env=env)
     wall = _seconds(_time_field(r.stderr, "Elapsed (wall clock) time (h:mm:ss or m:ss)") or "nan")
     rss = int(_time_field(r.stderr, "Maximum resident set size (kbytes)") or 0)
+    first = re.search(r"^first-layout-s (\S+)$", r.stderr, re.M)
     row: Dict[str, object] = {"case": label, "load": load, "wall": wall, "rss_mb": rss / 1024.0,
-                              "rc": r.returncode}
+                              "rc": r.returncode, "first": float(first.group(1)) if first else None}
     try:
         d = json.loads(r.stdout)
         m = d["metrics"]
@@ -100,24 +115,28 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--outputs", action="store_true", help="also write layout JSON and DXF")
     ap.add_argument("--load", type=int, default=0, help="busy CPU processes during the runs")
+    ap.add_argument("--root", default=ROOT, help="checkout whose code and .venv run (default: this one)")
     a = ap.parse_args(argv)
+    names = ALL if a.cases == "all" else a.cases.split(",")
     limit = 1.1 * a.time + 1.0
     busy = [subprocess.Popen([sys.executable, "-c", "while 1: pass"]) for _ in range(a.load)]
     try:
         print(f"T = {a.time:g} s, limit {limit:.1f} s, background busy processes: {a.load}"
-              f"{', outputs written' if a.outputs else ''}\n")
-        print("| case | load | wall s | limit s | margin s | engine time_s | max RSS MB | result |")
-        print("|---|---|---|---|---|---|---|---|")
-        for name in a.cases.split(","):
+              f"{', outputs written' if a.outputs else ''}, code: {a.root}\n")
+        print("| case | load | wall s | limit s | margin s | first layout s | engine time_s "
+              "| max RSS MB | result |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for name in names:
             label, args = CASES[name]
             if args[0].startswith(SAMPLES) and not os.path.exists(args[0]):
-                print(f"| {label} | - | skipped: {args[0]} missing | | | | | |")
+                print(f"| {label} | - | skipped: {args[0]} missing | | | | | | |")
                 continue
             for _ in range(a.repeat):
-                r = run_case(name, a.time, a.outputs)
+                r = run_case(name, a.time, a.outputs, a.root)
+                first = "-" if r["first"] is None else f"{r['first']:.2f}"
                 print(f"| {r['case']} | {r['load']:.1f} | {r['wall']:.2f} | {limit:.1f} | "
-                      f"{limit - r['wall']:+.2f} | {r['time_s']} | {r['rss_mb']:.0f} | {r['result']} |",
-                      flush=True)
+                      f"{limit - r['wall']:+.2f} | {first} | {r['time_s']} | {r['rss_mb']:.0f} "
+                      f"| {r['result']} |", flush=True)
     finally:
         for p in busy:
             p.kill()

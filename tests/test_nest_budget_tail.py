@@ -117,3 +117,34 @@ def test_started_at_survives_replace_and_is_no_document_property():
     nest_stage = next(st for st in doc_options.STAGE_OPTIONS if st.key == "Nest")
     names = [f[0] for f in doc_options.fields_of(nest_stage)]
     assert "started_at" not in names and "time_budget" in names
+
+
+def test_the_tail_timed_during_the_search_is_kept_as_it_will_be_at_the_end(monkeypatch):
+    """The build and check are timed while the workers search: two workers on
+    two cores make them ~1.5x slower than at the end, when the workers have
+    stopped.  The wall kept is the CPU time times max(1, wall/CPU - workers/cores);
+    what other programs take stays counted, and so do the outputs."""
+    monkeypatch.setattr(tail, "_cores", lambda: 2)
+    parts = _parts()
+    opts = NestOptions(container=ContainerSpec.sheet(200, 100), time_budget=10)
+    quiet = tail.Tail(parts, opts)
+    quiet.busy = 2
+    quiet.note_build(0.3, 3, cpu=0.2)          # wall / CPU 1.5: only the workers' share
+    assert abs(quiet.per_copy - 2 * 0.2 / 3) < 1e-12 and quiet.contention == 1.0
+    loaded = tail.Tail(parts, opts)
+    loaded.busy = 2
+    loaded.note_build(0.6, 3, cpu=0.1)         # wall / CPU 6: other programs take 5 - 1
+    assert abs(loaded.contention - 5.0) < 1e-12
+    assert abs(loaded.per_copy - 2 * 0.5 / 3) < 1e-12
+    alone = tail.Tail(parts, opts)             # one worker: the search waited for it
+    alone.note_build(0.6, 3, cpu=0.1)
+    assert abs(alone.per_copy - 2 * 0.2) < 1e-12 and abs(alone.contention - 6.0) < 1e-12
+    with tail.writing(["dxf"]):
+        with tail.session(parts, opts) as out:
+            prior = out.reserve(7) - out.reserve(7, outputs=False)
+            out.busy = 2
+            out.note_build(0.3, 3, cpu=0.2)
+            now = out.reserve(7) - out.reserve(7, outputs=False)
+            # the outputs' CPU time at the measured 1.0, not the prior 2.5
+            assert abs(now - prior / tail.PRIOR_CONTENTION) < 1e-9
+            assert now > tail.OUTPUT_CPU_S["dxf"][0]

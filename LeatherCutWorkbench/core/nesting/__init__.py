@@ -19,7 +19,8 @@ JSON, DXF, SVG, remnant hides); strips: :mod:`strip_shrink` (shrink the strip an
 the overlaps until the budget ends), :mod:`separation` (guided local search
 over the weighted overlap), :mod:`overlap` (penetration depth from no-fit
 polygons, numba kernels); hides: :mod:`hide_choice` (which hides to use and
-their fill order), :mod:`part_regions` (part regions with their own grade).
+their fill order), :mod:`hide_regions` (a hide's regions per grade, built when
+the fill opens it), :mod:`part_regions` (part regions with their own grade).
 
 Every layout :func:`nest` returns has passed :func:`checker.check_layout`;
 a placement the checker rejects is moved to ``unplaced`` with an error

@@ -41,7 +41,12 @@ class BinSpec:
     ``material``: the area of the largest region (a copy larger than what is
     left of it cannot fit, so no inner-fit region is computed for it);
     ``coarse``: per grade a subset of the region with few vertices and convex
-    obstacles, used under time pressure."""
+    obstacles, used under time pressure.
+
+    ``prep`` (hides): a :class:`hide_regions.HideRegions` that builds
+    ``regions``, ``coarse`` and ``material`` when :meth:`ready` is first
+    called -- the fill calls it when it opens the hide, so a hide the search
+    never tries is never prepared (None: the fields are already set)."""
 
     kind: str
     rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
@@ -49,6 +54,14 @@ class BinSpec:
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
     material: float = math.inf    # hide: usable area (grid units^2) of its largest region
     coarse: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
+    prep: Optional[object] = None
+
+    def ready(self) -> "BinSpec":
+        """This spec with its regions built (once; see ``prep``)."""
+        if self.prep is not None:
+            self.regions, self.coarse, self.material = self.prep.build()
+            self.prep = None
+        return self
 
 
 class Placer:
@@ -91,7 +104,8 @@ class Placer:
         return min(b, len(self.bin_specs) - 1)
 
     def _spec(self, b: int) -> BinSpec:
-        return self.bin_specs[self._spec_index(b)]
+        """The spec of bin position ``b``, its hide regions built (:meth:`BinSpec.ready`)."""
+        return self.bin_specs[self._spec_index(b)].ready()
 
     def _ifp(self, b: int, v: Variant, extent: int) -> List[IntPath]:
         """Inner-fit region of ``v`` in bin ``b`` (a strip is open up to ``extent``)."""

@@ -17,7 +17,6 @@ import time
 from contextlib import contextmanager
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
-import pyclipper
 from shapely.geometry import Polygon
 
 from ..errors import CancelledError, LeatherCutError
@@ -25,14 +24,15 @@ from ..model import Container, Finding, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
-from .containers import net_area, rectangle, shrink_for_margin, zone_pieces
+from .containers import net_area, rectangle
 from .convex_sums import warm_up
 from .nfp import is_convex
+from .hide_regions import HideRegions
 from .hide_shapes import simplify_for_hides
 from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
-from .shapes import PieceType, make_variants, piece_from_part, to_grid
+from .shapes import PieceType, make_variants, piece_from_part
 from .tail import Tail, current
 
 #: The grid resolution: the largest container or part dimension spans this many units.
@@ -69,59 +69,10 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
         if spec.kind == "sheet":
             return bins, [], spec.count is None, spec.count
         return bins, [], False, 1
-    bins = []
-    for c in spec.hides:
-        regions: Dict[int, Tuple[list, list]] = {}
-        coarse: Dict[int, Tuple[list, list]] = {}
-        material = 0.0
-        xs = [p[0] for p in c.outline]
-        ys = [p[1] for p in c.outline]
-        tol = 0.004 * max(max(xs) - min(xs), max(ys) - min(ys))
-        # finely flattened outlines (edges shorter than 1 % of the hide's size on average)
-        # simplified within 0.02 % of its size, inside the material: Baldacci Test3/4/9
-        # outlines of 1,100-1,900 vertices left ~400 pocket pieces per hide (inner-fit
-        # regions 4.5x slower than at 2 units on these 10,000-unit hides)
-        fine = _perimeter(c.outline) < 2.5 * tol * len(c.outline)
-        edge_tol = max(0.25, 0.05 * tol) if fine else 0.25
-        pieces = zone_pieces(c)                 # once per hide, not per grade
-        for g in sorted(set(grades)):
-            outers, holes, region = shrink_for_margin(c, g, m, simplify=edge_tol, pieces=pieces)
-            regions[g] = ([to_grid(_arr(o), scale) for o in outers],
-                          [to_grid(_arr(r), scale) for r in holes])
-            if region is not None:
-                material = max(material, region.area * scale * scale)
-                coarse[g] = _coarse_region(region, tol, scale)
-        bins.append(BinSpec("hide", regions=regions, grade_key={g: g for g in grades},
-                            material=material, coarse=coarse))
+    # built when the fill first opens each hide (:mod:`hide_regions`)
+    bins = [BinSpec("hide", grade_key={g: g for g in grades},
+                    prep=HideRegions(c, sorted(set(grades)), m, scale)) for c in spec.hides]
     return bins, list(spec.hides), False, len(spec.hides)
-
-
-def _perimeter(ring) -> float:
-    return float(sum(math.dist(ring[i - 1], ring[i]) for i in range(len(ring))))
-
-
-def _coarse_region(region, tol: float, scale: float) -> Tuple[list, list]:
-    """A subset of a hide region with few vertices, for inner-fit regions under
-    time pressure: shrunk by ``tol`` mm then simplified within 0.9 ``tol``
-    (so it stays inside), holes as their convex hulls (which contain them)."""
-    from .containers import polygons_of
-    from .shapes import convex_hull
-    small = region.buffer(-tol, 4, join_style=2).simplify(0.9 * tol)
-    outers, obstacles = [], []
-    for p in polygons_of(small):
-        ring = to_grid(_arr(p.exterior.coords[:-1]), scale)
-        if len(ring) >= 3:
-            outers.append(ring if pyclipper.Orientation(ring) else ring[::-1])
-        for r in p.interiors:
-            hole = convex_hull(to_grid(_arr(r.coords[:-1]), scale))
-            if len(hole) >= 3:
-                obstacles.append(hole)
-    return outers, obstacles
-
-
-def _arr(ring):
-    import numpy as np
-    return np.asarray(ring, dtype=float)
 
 
 def _workers(options: NestOptions) -> int:
@@ -190,9 +141,13 @@ class _Best:
         self.build = build
         self.shown = 0.0
         self.dirty = False
+        #: ``time.monotonic()`` when the first layout arrived (None before)
+        self.first_at: Optional[float] = None
 
     def offer(self, worker: int, cost, order, placements) -> None:
         self.per_worker[worker] = (cost, order, placements)
+        if self.first_at is None:
+            self.first_at = time.monotonic()
         if self.best is None or (cost, worker) < (self.best[0], self.best[3]):
             self.best = (cost, order, placements, worker)
             self.dirty = True
@@ -280,15 +235,20 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     ends: List[float] = []
 
+    # worker processes that search on while the parent times the tail (one worker:
+    # the search runs in this process and waits for the measurement)
+    searching = n_workers if n_workers > 1 and budget > 0 and len(copies) >= 2 else 0
+
     def measured_end(first_best) -> float:
         """The search end once the tail's cost is measured on the first layout
         (its build and check, timed while the workers search on)."""
         if not ends:
             # (past the search end there is nothing to move: no measurement)
             if budget > 0 and tail.per_copy is None and time.monotonic() < t_end:
-                t = time.monotonic()
+                tail.busy = searching
+                t, c = time.monotonic(), time.thread_time()
                 layout = build(first_best[1], first_best[2])
-                tail.note_build(time.monotonic() - t, len(layout.placements))
+                tail.note_build(time.monotonic() - t, len(layout.placements), time.thread_time() - c)
                 tail.check(parts, layout, options)
             ends.append(min(t_end, _deadlines(t_start, budget,
                                               _reserve(budget, len(copies), tail))[0]))
@@ -308,6 +268,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
         def offer(c, o, p) -> None:
             best.offer(0, c, o, p)
+            report(progress, frac(), best.message())      # each better layout, live
             b.t_end = measured_end(best.best)
 
         b = Budget(t_end, quick, max_eval, stop, offer, tick, hard_stop=boxes, give_up_at=hard)
@@ -328,7 +289,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
                                 "copies it did not reach are unplaced; give more time"))
     layout.findings.extend(findings)
     layout.metrics.update({"engine": "own", "workers": workers_used, "evaluations": evaluations,
-                           "time_s": round(time.monotonic() - t_start, 3), "seed": options.seed,
+                           "time_s": round(time.monotonic() - t_start, 3),
+                           "first_layout_s": round(best.first_at - t_start, 3), "seed": options.seed,
                            "stopped": bool(stop is not None and stop())})
     return layout
 
@@ -400,10 +362,10 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: flo
         try:
             while len(done) + len(errors) < n:
                 _drain(queue, best, done, errors, timeout=0.05)
+                best.publish()              # shown first, then the tail measured on it
+                report(progress, frac(), best.message())
                 if best.best is not None:
                     t_end = measured_end(best.best)
-                best.publish()
-                report(progress, frac(), best.message())
                 if stop is not None and stop() and best.best is not None:
                     stop_event.set()
                 if time.monotonic() > t_end:

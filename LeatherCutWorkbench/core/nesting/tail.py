@@ -8,9 +8,17 @@ it must fit in the budget (T + 10 % + 1 s promised), so the search ends
 
 * the build and the check are timed the first time they run (the engine does
   both on its first layout while the search goes on) and kept ``FACTOR``
-  times, scaled to the number of copies; before that, an estimate per copy;
-* the outputs the caller declared with :func:`writing` cost a time per
-  written vertex (measured, times ``FACTOR``), plus ``EXIT_S``.
+  times, scaled to the number of copies; before that, an estimate per copy.
+  Timed while ``busy`` worker processes search, they take longer than they
+  will at the end, when the workers have stopped: with wall / CPU = r
+  measured on ``cores`` cores, the wall kept is the CPU time times
+  max(1, r - busy / cores) -- the share of a core the search's own
+  processes took away is given back, what other programs take is kept
+  (Baldacci Test10 at load ~6: 1.8 s measured, 0.3-0.7 s at the end);
+* the outputs the caller declared with :func:`writing` cost a CPU time per
+  file and per written vertex (measured, ``OUTPUT_CPU_S``) times the same
+  wall / CPU ratio expected at the end (``PRIOR_CONTENTION`` until the build
+  and check are timed), plus ``EXIT_S``.
 
 :meth:`Tail.check` remembers its verdicts: the same layout under the same
 options is checked once (the strip phase checks its result, :func:`nest`
@@ -25,6 +33,7 @@ from __future__ import annotations
 
 import contextvars
 import math
+import os
 import time
 from contextlib import contextmanager
 from typing import Dict, Iterator, List, Optional, Sequence, Tuple
@@ -34,22 +43,22 @@ from ..model import Layout, Part
 from .checker import check_layout
 from .options import NestOptions
 
-#: the measured build + check cost is kept this many times: once, as it is
-#: measured while the workers search (two busy cores: it is about twice the
-#: cost at the end, when the parent has the machine to itself)
+#: the measured build + check cost (corrected for the busy workers, see the
+#: module doc) is kept this many times
 FACTOR = 1.0
 #: build + check seconds per copy assumed until measured, per container kind
 #: (measured: sheets of DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s --, hides with
 #: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
 PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.015}
-#: the outputs' measured time per vertex is kept this many times
-OUTPUT_FACTOR = 1.0
 #: the report and the process exit (the CLI ends with ``os._exit``)
 EXIT_S = 0.15
-#: seconds per written vertex of the placed outlines and the containers
-#: (ezdxf, one LWPOLYLINE per contour: 0.024 ms at load 1.3, kept for load ~3;
-#: JSON / SVG ~0.05 ms), before FACTOR
-OUTPUT_S_PER_VERTEX = {"dxf": 0.06e-3, "layout": 0.05e-3, "svg": 0.05e-3}
+#: CPU seconds of each output: (per file -- importing ezdxf, the document --,
+#: per written vertex of the placed outlines and the containers), measured on
+#: Baldacci Test1 / Test10 layouts (1,400 / 17,000 vertices; DXF one LWPOLYLINE
+#: per contour: 0.22 / 0.49 s; layout JSON 0.12 / 0.19 s; SVG 0.004 s / -)
+OUTPUT_CPU_S = {"dxf": (0.25, 0.015e-3), "layout": (0.12, 0.012e-3), "svg": (0.02, 0.005e-3)}
+#: wall / CPU of the tail assumed until measured (a loaded 2-core machine)
+PRIOR_CONTENTION = 2.5
 
 _CURRENT: contextvars.ContextVar[Optional["Tail"]] = contextvars.ContextVar("nest_tail", default=None)
 _OUTPUTS: contextvars.ContextVar[Tuple[str, ...]] = contextvars.ContextVar("nest_outputs", default=())
@@ -66,8 +75,13 @@ class Tail:
         self.outputs = tuple(outputs)
         #: measured (build + check) seconds per copy, None until measured
         self.per_copy: Optional[float] = None
-        self._build: Optional[float] = None
-        self._check: Optional[float] = None
+        #: worker processes searching while the build and check are timed
+        #: (the engine sets it; 0: the machine is the measurement's own)
+        self.busy = 0
+        #: wall / CPU expected for the tail once the search has stopped
+        self.contention = PRIOR_CONTENTION
+        self._build: Optional[Tuple[float, float]] = None     # (wall, CPU) s per copy
+        self._check: Optional[Tuple[float, float]] = None
         self._memo: Dict[tuple, List[str]] = {}
         self._vertices = {p.id: _vertices(p) for p in parts}
         spec = options.container
@@ -83,40 +97,49 @@ class Tail:
             self._container_vertices = 4 * max(spec.count or 1, 1)
 
     # ------------------------------------------------------------ cost model
-    def note_build(self, seconds: float, copies: int) -> None:
-        """A layout of ``copies`` placements took ``seconds`` to build."""
+    def note_build(self, seconds: float, copies: int, cpu: Optional[float] = None) -> None:
+        """A layout of ``copies`` placements took ``seconds`` (wall; ``cpu``:
+        CPU seconds of the thread, None = unknown) to build."""
         if self._build is None and copies > 0:
-            self._build = seconds / copies
+            self._build = (seconds / copies, (seconds if cpu is None else cpu) / copies)
             self._update()
 
-    def note_check(self, seconds: float, copies: int) -> None:
+    def note_check(self, seconds: float, copies: int, cpu: Optional[float] = None) -> None:
+        """As :meth:`note_build`, for the check."""
         if self._check is None and copies > 0:
-            self._check = seconds / copies
+            self._check = (seconds / copies, (seconds if cpu is None else cpu) / copies)
             self._update()
 
     def _update(self) -> None:
         known = [c for c in (self._build, self._check) if c is not None]
+        wall = sum(w for w, _c in known)
+        cpu = sum(c for _w, c in known)
+        if cpu > 0:
+            r = wall / cpu
+            self.contention = max(1.0, r - self.busy / _cores())
+            wall = min(wall, cpu * self.contention)
         # one of the two measured: the other assumed alike
-        self.per_copy = sum(known) * (2.0 / len(known))
+        self.per_copy = wall * (2.0 / len(known))
 
     def reserve(self, copies: int, rounds: int = 1, outputs: bool = True) -> float:
         """Seconds to keep free after the search for a nest of ``copies``
         that still builds and checks its layout ``rounds`` times (and writes
         the declared outputs, unless ``outputs`` is False)."""
         per = self.per_copy if self.per_copy is not None else self._prior
-        out = OUTPUT_FACTOR * self._output_s(copies) if outputs else 0.0
+        out = self.contention * self._output_cpu_s(copies) if outputs else 0.0
         return EXIT_S + FACTOR * per * copies * rounds + out
 
-    def _output_s(self, copies: int) -> float:
-        """The declared outputs of ``copies`` average copies and the containers
-        (hides: in proportion to the copies placed)."""
-        rate = sum(OUTPUT_S_PER_VERTEX.get(k, 0.0) for k in self.outputs)
+    def _output_cpu_s(self, copies: int) -> float:
+        """CPU seconds of the declared outputs of ``copies`` average copies and
+        the containers (hides: in proportion to the copies placed)."""
+        costs = [OUTPUT_CPU_S[k] for k in self.outputs if k in OUTPUT_CPU_S]
         n = sum(max(p.quantity, 0) for p in self.parts)
-        if not rate or not n:
+        if not costs or not n:
             return 0.0
         share = min(copies, n) / n
         per_copy = sum(self._vertices[p.id] * max(p.quantity, 0) for p in self.parts) / n
-        return rate * (per_copy * min(copies, n) + share * self._container_vertices)
+        vertices = per_copy * min(copies, n) + share * self._container_vertices
+        return sum(fixed + rate * vertices for fixed, rate in costs)
 
     def promised_end(self) -> float:
         """``started`` + T + 10 % + 1 s of the whole nest (inf without a budget)."""
@@ -130,15 +153,23 @@ class Tail:
         hit = self._memo.get(key)
         if hit is not None:
             return list(hit)
-        t = time.monotonic()
+        t, c = time.monotonic(), time.thread_time()
         problems = check_layout(parts, layout, spacing=options.spacing, margin=options.margin,
                                 tol=options.tolerance, chord_tol=options.chord_tol,
                                 rotations_override=options.rotations_override,
                                 mirror_override=options.mirror_override,
                                 free_rotation=options.free_rotation)
-        self.note_check(time.monotonic() - t, len(layout.placements))
+        self.note_check(time.monotonic() - t, len(layout.placements), time.thread_time() - c)
         self._memo[key] = list(problems)
         return problems
+
+
+def _cores() -> int:
+    """CPU cores this process may run on."""
+    try:
+        return max(len(os.sched_getaffinity(0)), 1)
+    except AttributeError:                      # not Linux
+        return max(os.cpu_count() or 1, 1)
 
 
 def _vertices(p: Part) -> int:
