@@ -148,3 +148,17 @@ def test_the_tail_timed_during_the_search_is_kept_as_it_will_be_at_the_end(monke
             # the outputs' CPU time at the measured 1.0, not the prior 2.5
             assert abs(now - prior / tail.PRIOR_CONTENTION) < 1e-9
             assert now > tail.OUTPUT_CPU_S["dxf"][0]
+
+
+def test_the_prior_tail_of_a_hide_job_follows_its_hides_and_parts():
+    """Before the first layout is timed the reserve per copy was 15 ms on every
+    hide job: 4.2 s for Baldacci Test7's 280 small rectangles, so at a high
+    load its first fill gave up on every copy.  Now it grows with the hides'
+    vertices (outline, holes, zones) times the parts' segments."""
+    def prior(name):
+        inst = read_esicup(os.path.join(DATA, name))
+        opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=10)
+        return tail.Tail(inst.parts, opts).reserve(1) - tail.EXIT_S
+    small = prior("Test8.json")                      # 31 vertices per hide, 6 per part
+    large = prior("Test10_items13_15_hide7.json")    # a hide of 27 holes and 14 zones
+    assert 0 < small < 0.002 < 20 * small < large <= tail.PRIOR_HIDE_MAX_S

@@ -46,10 +46,19 @@ from .options import NestOptions
 #: the measured build + check cost (corrected for the busy workers, see the
 #: module doc) is kept this many times
 FACTOR = 1.0
-#: build + check seconds per copy assumed until measured, per container kind
-#: (measured: sheets of DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s --, hides with
-#: ~40 holes and zones ~20 ms -- Baldacci Test10, 54 copies, 1.1 s)
-PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001, "hide": 0.015}
+#: build + check seconds per copy assumed until measured, sheets and strips
+#: (measured: DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s)
+PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001}
+#: hides: build + check CPU seconds per copy assumed until measured, (base, per
+#: hide vertex x part vertex: outline, holes and zones of an average hide times
+#: the segments of an average copy), times ``PRIOR_CONTENTION``, at most
+#: ``PRIOR_HIDE_MAX_S``.  Measured (CPU ms per copy): Baldacci Test7 0.3
+#: (172 x 6 vertices), Scarpa 0.8 (896 x 36), Test3 3.6 (1,488 x 39), Test10 10
+#: (1,023 x 217, part regions); it was 15 ms wall for every hide job, 4.2 s of
+#: reserve for Test7's 280 rectangles, whose first fill then gave up on every
+#: copy at load 9
+PRIOR_HIDE_CPU_S = (0.2e-3, 0.06e-6)
+PRIOR_HIDE_MAX_S = 0.015
 #: the report and the process exit (the CLI ends with ``os._exit``)
 EXIT_S = 0.15
 #: CPU seconds of each output: (per file -- importing ezdxf, the document --,
@@ -85,14 +94,19 @@ class Tail:
         self._memo: Dict[tuple, List[str]] = {}
         self._vertices = {p.id: _vertices(p) for p in parts}
         spec = options.container
-        self._prior = PRIOR_PER_COPY_S.get(spec.kind, max(PRIOR_PER_COPY_S.values()))
-        if spec.kind == "hide":
+        self._prior = PRIOR_PER_COPY_S.get(spec.kind, PRIOR_PER_COPY_S["sheet"])
+        if spec.kind == "hide" and spec.hides:
             # the hides used: about twice the parts' bounding-box area (at most all)
             verts = sum(len(h.outline) + sum(map(len, h.defects)) + sum(len(z) for _g, z in h.zones)
                         for h in spec.hides)
             hide_area = sum(abs(signed_area(h.outline)) for h in spec.hides) or 1.0
             part_area = sum(_box_area(p) * max(p.quantity, 0) for p in parts)
             self._container_vertices = verts * min(1.0, 2.0 * part_area / hide_area)
+            n = sum(max(p.quantity, 0) for p in parts)
+            per_copy = sum(self._vertices[p.id] * max(p.quantity, 0) for p in parts) / n if n else 0.0
+            base, rate = PRIOR_HIDE_CPU_S
+            self._prior = min(PRIOR_HIDE_MAX_S,
+                              PRIOR_CONTENTION * (base + rate * per_copy * verts / len(spec.hides)))
         else:
             self._container_vertices = 4 * max(spec.count or 1, 1)
 
