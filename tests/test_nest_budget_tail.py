@@ -10,7 +10,7 @@ import sys
 import time
 
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, nest, tail
-from LeatherCutWorkbench.core.nesting.engine import _deadlines, _reserve
+from LeatherCutWorkbench.core.nesting.engine import _deadlines, _reserve, _reserve_floor
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 
 from nest_shapes import l_shape, rect
@@ -162,3 +162,21 @@ def test_the_prior_tail_of_a_hide_job_follows_its_hides_and_parts():
     small = prior("Test8.json")                      # 31 vertices per hide, 6 per part
     large = prior("Test10_items13_15_hide7.json")    # a hide of 27 holes and 14 zones
     assert 0 < small < 0.002 < 20 * small < large <= tail.PRIOR_HIDE_MAX_S
+
+
+def test_the_workers_may_search_until_any_measured_tail_allows():
+    """The workers used to get the search end of the prior tail and the
+    measured one could only move it earlier: Baldacci Test7 and Test1 ended
+    at 5.7-8 s of 10 with the tail measured at 0.1 s.  Now they get the latest
+    end a tail can give (the shutdown and the exit) and the parent ends them at
+    the measured one: no tail, measured or not, ends the search after that."""
+    parts = _parts()
+    opts = NestOptions(container=ContainerSpec.sheet(200, 100), time_budget=10)
+    for budget in (0.5, 3.0, 10.0, 60.0):
+        latest = _deadlines(0.0, budget, _reserve_floor(budget))[0]
+        assert budget - 0.5 - tail.EXIT_S <= latest < budget
+        for per_copy in (None, 0.0, 1e-4, 0.05):
+            t = tail.Tail(parts, opts)
+            t.per_copy = per_copy
+            for outputs in (True, False):
+                assert _deadlines(0.0, budget, _reserve(budget, 7, t, outputs))[0] <= latest

@@ -33,7 +33,7 @@ from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part
-from .tail import Tail, current
+from .tail import EXIT_S, Tail, current
 
 #: The grid resolution: the largest container or part dimension spans this many units.
 GRID_UNITS = 2.0e6
@@ -117,6 +117,11 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
         promised = t_start + 1.1 * budget + 1.0
     last = promised - 1.25 * (reserve if fill_reserve is None else fill_reserve)
     return t_end, quick, slow, t_end, max(last, t_end)
+
+
+def _reserve_floor(budget: float) -> float:
+    """The smallest :func:`_reserve` any measured tail gives: the shutdown and the exit."""
+    return min(0.05 * budget, 0.5) + min(EXIT_S, 0.4 * budget)
 
 
 def _reserve(budget: float, n_copies: int, tail: Tail, outputs: bool = True) -> float:
@@ -224,6 +229,11 @@ def run_own(parts: Sequence[Part], options: NestOptions,
                                                  options.container.kind == "hide",
                                                  tail.promised_end(),
                                                  _reserve(budget, len(copies), tail, outputs=False))
+    # the searches themselves may run until the latest end any measured tail allows
+    # (the shutdown and the exit only); this process ends them at ``measured_end``,
+    # before the first layout at ``t_end`` (the prior tail): a measured tail cheaper
+    # than the prior one gives the search its time back
+    latest = _deadlines(t_start, budget, _reserve_floor(budget))[0]
     max_eval = options.max_evaluations if budget > 0 else 4
     net = [net_area(h) for h in hides]
 
@@ -241,17 +251,21 @@ def run_own(parts: Sequence[Part], options: NestOptions,
 
     def measured_end(first_best) -> float:
         """The search end once the tail's cost is measured on the first layout
-        (its build and check, timed while the workers search on)."""
+        (its build and check, timed while the workers search on): earlier or
+        later than ``t_end``, never after ``latest``."""
         if not ends:
-            # (past the search end there is nothing to move: no measurement)
-            if budget > 0 and tail.per_copy is None and time.monotonic() < t_end:
-                tail.busy = searching
-                t, c = time.monotonic(), time.thread_time()
-                layout = build(first_best[1], first_best[2])
-                tail.note_build(time.monotonic() - t, len(layout.placements), time.thread_time() - c)
-                tail.check(parts, layout, options)
-            ends.append(min(t_end, _deadlines(t_start, budget,
-                                              _reserve(budget, len(copies), tail))[0]))
+            if budget > 0 and time.monotonic() < t_end:
+                if tail.per_copy is None:
+                    tail.busy = searching
+                    t, c = time.monotonic(), time.thread_time()
+                    layout = build(first_best[1], first_best[2])
+                    tail.note_build(time.monotonic() - t, len(layout.placements),
+                                    time.thread_time() - c)
+                    tail.check(parts, layout, options)
+                ends.append(min(latest, _deadlines(t_start, budget,
+                                                   _reserve(budget, len(copies), tail))[0]))
+            else:                   # past the search end: nothing to move, no measurement
+                ends.append(t_end)
         return ends[0]
 
     best = _Best(summary, on_best, build)
@@ -266,16 +280,22 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             best.publish()
             return progress is None or progress(frac(), best.message()) is not False
 
+        end = [t_end]
+
         def offer(c, o, p) -> None:
             best.offer(0, c, o, p)
             report(progress, frac(), best.message())      # each better layout, live
-            b.t_end = measured_end(best.best)
+            end[0] = measured_end(best.best)
 
-        b = Budget(t_end, quick, max_eval, stop, offer, tick, hard_stop=boxes, give_up_at=hard)
+        def stop_now() -> bool:
+            return (stop is not None and stop()) or time.monotonic() > end[0]
+
+        b = Budget(latest, quick, max_eval, stop_now, offer, tick, hard_stop=boxes,
+                   give_up_at=hard)
         evaluations = search(problem, copies, options.seed, 0, b)[3]
         workers_used = 1
     else:
-        evaluations = _run_pool(problem, copies, options.seed, n_workers, t_end,
+        evaluations = _run_pool(problem, copies, options.seed, n_workers, (t_end, latest),
                                 (quick, slow, boxes, hard), max_eval, best, progress, frac, stop,
                                 measured_end)
         workers_used = n_workers
@@ -337,21 +357,23 @@ def _closable_stdin() -> Iterator[None]:
         replacement.close()
 
 
-def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, t_end: float,
+def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tuple[float, float],
               fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
               progress: Optional[ProgressFn], frac, stop,
               measured_end: Callable[[tuple], float]) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
     deadline (or on Stop): the wall time holds whatever a worker is doing.
-    The deadline moves to ``measured_end(first best)`` once a layout exists.
+    ``ends`` = (the deadline, the latest end the workers are given); the
+    deadline moves to ``measured_end(first best)`` once a layout exists.
     Returns the evaluations the workers reported."""
+    t_end, latest = ends
     with _closable_stdin():
         ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
         queue = ctx.Queue()
         stop_event = ctx.Event()
         procs = [ctx.Process(target=worker_main, daemon=True,
-                             args=(problem, copies, seed, i, t_end,
+                             args=(problem, copies, seed, i, latest,
                                    fill_limits[0] if i == 0 else fill_limits[1],
                                    max_eval, queue, stop_event, fill_limits[2], fill_limits[3]))
                  for i in range(n)]
