@@ -97,8 +97,9 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
     last resort is the promised end T + 10 % + 1 s (``promised``: that of the
     whole nest when this search has only a share of it) less 1.25
     ``fill_reserve`` (default ``reserve``; the engine leaves the outputs out of
-    it: a first fill cut short for them loses copies, a late output only
-    time) -- the placement step under way when it passes (the fill checks
+    it, on hides all but opening the files: a first fill cut short for them
+    loses copies, a late output only time) -- the
+    placement step under way when it passes (the fill checks
     between orientations), then the tail --, never before the search end: only a
     machine too loaded even for box-only no-fit polygons ever leaves copies
     unplaced for lack of time (it was 1.5 T + 2 s, and Baldacci Test5 / Test6
@@ -224,11 +225,13 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     n_workers = _workers(options)
     budget = options.time_budget
     tail = current(parts, options)
+    on_hides = options.container.kind == "hide"
+    # hides (heavy checks and outputs): the last resort also keeps the outputs' files free
     t_end, quick, slow, boxes, hard = _deadlines(t_start, budget,
-                                                 _reserve(budget, len(copies), tail),
-                                                 options.container.kind == "hide",
+                                                 _reserve(budget, len(copies), tail), on_hides,
                                                  tail.promised_end(),
-                                                 _reserve(budget, len(copies), tail, outputs=False))
+                                                 _reserve(budget, len(copies), tail, outputs=False)
+                                                 + (tail.files_s() if on_hides else 0.0))
     # the searches themselves may run until the latest end any measured tail allows
     # (the shutdown and the exit only); this process ends them at ``measured_end``,
     # before the first layout at ``t_end`` (the prior tail): a measured tail cheaper
