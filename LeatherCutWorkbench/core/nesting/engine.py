@@ -98,9 +98,9 @@ def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = Fals
     whole nest when this search has only a share of it) less 1.25
     ``fill_reserve`` (default ``reserve``; the engine leaves the outputs out of
     it, on hides all but opening the files: a first fill cut short for them
-    loses copies, a late output only time) -- the
-    placement step under way when it passes (the fill checks
-    between orientations), then the tail --, never before the search end: only a
+    loses copies, a late output only time) -- the placement step under way
+    when it passes (the fill checks between orientations), then the tail --,
+    never before the search end: only a
     machine too loaded even for box-only no-fit polygons ever leaves copies
     unplaced for lack of time (it was 1.5 T + 2 s, and Baldacci Test5 / Test6
     then took 18-19 s at T = 10 under load).
