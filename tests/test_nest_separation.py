@@ -379,7 +379,7 @@ def test_descent_steps_a_copy_out_of_an_overlap_to_the_free_side():
     assert start > 1000.0
     seed_rng(3)
     x, y, c = _descend(1, 0, X[1], 0.0, start, X, Y, V, W, cb, 0.0, 40000.0, y0, y1, 1,
-                       order, keys, pad, wmax, coff, cscale, ramp, *arrs)
+                       order, keys, pad, wmax, coff, cscale, ramp, *arrs, 0.25, 1e-4)
     assert c == 0.0 and y == 0.0
     assert contact - 1.0 <= x < 15000.0        # right of A, a few steps from where it was
 

@@ -49,8 +49,12 @@ STRIKES = 2
 N_STARTS = 3
 UNIQUE = 0.05
 #: coordinate descent steps (:func:`_descend`): first and last step as a share of
-#: the core box's smaller side, growth after a better step, shrink after none
+#: the core box's smaller side, growth after a better step, shrink after none.
+#: The starts descend down to ``CD_COARSE``, only the best of them on to
+#: ``CD_LAST`` (fixed starts: shirts 0.05 % shorter 9/16 -> 11/16 separations
+#: at half the CPU time, albano 0.12 % shorter the same 2/16 at 0.8x)
 CD_FIRST = 0.25
+CD_COARSE = 0.01
 CD_LAST = 1e-4
 CD_GROW = 1.1
 CD_SHRINK = 0.5
@@ -83,20 +87,20 @@ def _cost(i, v, x, y, X, Y, V, W, cb, nv, limit, order, keys, pad, wmax, coff, c
 
 @njit(cache=True, nogil=True)
 def _descend(i, bv, bx, by, best, X, Y, V, W, cb, x0, x1, y0, y1, nv, order, keys, pad, wmax,
-             coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox):
+             coff, cscale, ramp, pts, start, count, ring_lo, ring_hi, bbox, first, last):
     """Coordinate descent of copy ``i`` (variant ``bv``) from (bx, by) with cost
     ``best``: two opposite steps along one axis of four (x, y, both diagonals),
     starting at a random one; the better of them, if better than the current
     place, is taken and that axis's step grows x ``CD_GROW``, else it shrinks
     x ``CD_SHRINK`` and the next axis follows (a diagonal scales both steps by
-    the square root).  Steps run from ``CD_FIRST`` down to ``CD_LAST`` of the
-    core box's smaller side (the step rule of sparrow's coordinate descent,
+    the square root).  Steps run from ``first`` down to ``last`` of the core
+    box's smaller side (the step rule of sparrow's coordinate descent,
     Gardeyn et al. 2025; own code).  Returns (x, y, cost)."""
     lx, hx = x0 - cb[bv, 0], x1 - cb[bv, 2]
     ly, hy = y0 - cb[bv, 1], y1 - cb[bv, 3]
     side = min(cb[bv, 2] - cb[bv, 0], cb[bv, 3] - cb[bv, 1])
-    sx = sy = CD_FIRST * side
-    floor = CD_LAST * side
+    sx = sy = first * side
+    floor = last * side
     axis = np.random.randint(4)
     while (sx >= floor or sy >= floor) and best > 0.0:
         ax = 0.0 if axis == 1 else (sx if axis != 3 else -sx)
@@ -135,7 +139,8 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
     bounds how far an inflated outline reaches beyond its core box, ``wmax``
     the widest core box (both for the broad phase).  The ``N_STARTS``
     cheapest distinct candidates (its current place among them) each start a
-    coordinate descent (:func:`_descend`); the cheapest result wins."""
+    coarse coordinate descent (:func:`_descend`); the cheapest result is
+    refined with finer steps and wins."""
     keys = X + cb[V, 0]
     order = np.argsort(keys)
     keys = keys[order]
@@ -194,11 +199,14 @@ def move_copy(i, X, Y, V, W, choices, cb, x0, x1, y0, y1, nv, n_global, n_local,
             break
         x, y, c = _descend(i, sv[k], sx[k], sy[k], sc[k], X, Y, V, W, cb, x0, x1, y0, y1, nv,
                            order, keys, pad, wmax, coff, cscale, ramp, pts, start, count,
-                           ring_lo, ring_hi, bbox)
+                           ring_lo, ring_hi, bbox, CD_FIRST, CD_COARSE)
         if c < best:
             best, bx, by, bv = c, x, y, sv[k]
             if best <= 0.0:
-                break
+                return bx, by, bv, best
+    bx, by, best = _descend(i, bv, bx, by, best, X, Y, V, W, cb, x0, x1, y0, y1, nv,
+                            order, keys, pad, wmax, coff, cscale, ramp, pts, start, count,
+                            ring_lo, ring_hi, bbox, 2.0 * CD_COARSE, CD_LAST)
     return bx, by, bv, best
 
 
