@@ -352,3 +352,69 @@ def test_swap_of_a_large_and_a_small_copy_carries_the_covered_copies_into_the_ro
     plain_x, plain_y = inst.X.copy(), inst.Y.copy()
     plain_x[[0, 1]], plain_y[[0, 1]] = X[[0, 1]], Y[[0, 1]]
     assert sep.overlaps(plain_x, plain_y, V).max() > 100 * inst.eps
+
+
+def _kernel_args(tab, cb, pad):
+    wmax = float((cb[:, 2] - cb[:, 0]).max())
+    return pad + 2.0, wmax, *tab.costs(), 1.0, *tab.arrays()
+
+
+def test_descent_steps_a_copy_out_of_an_overlap_to_the_free_side():
+    """Coordinate descent (grown and halved steps on four axes): a 10 x 10 mm
+    square 3 mm into another one in a 10 mm high strip can only get free by
+    moving right; the descent from its place ends there, free of A."""
+    from LeatherCutWorkbench.core.nesting.separation import _descend, seed_rng
+    v = make_variants([piece_from_part(rect("s", 10, 10), 0.05, 90, [0])], 1000.0, 0.0, 0.05)
+    tab = PairTable(v)
+    core = np.asarray(v[0].core, dtype=np.float64)
+    cb = np.array([core.min(axis=0).tolist() + core.max(axis=0).tolist()])
+    contact = pair_depth(0.0, 0.0, 0, *tab.arrays())       # B this far right of A: touching
+    X, Y, V, W = np.array([0.0, 7000.0]), np.zeros(2), np.zeros(2, dtype=np.int64), np.ones(2)
+    y0, y1 = cb[0, 1], cb[0, 3]                              # no room up or down
+    order = np.argsort(X + cb[V, 0])
+    keys = (X + cb[V, 0])[order]
+    pad, wmax, coff, cscale, ramp, *arrs = _kernel_args(tab, cb, 200.0)
+    start = copy_penalty(1, 0, X[1], 0.0, X, Y, V, W, 1, 1e300, order, keys, -1e9, 1e9,
+                         coff, cscale, ramp, *arrs)
+    assert start > 1000.0
+    seed_rng(3)
+    x, y, c = _descend(1, 0, X[1], 0.0, start, X, Y, V, W, cb, 0.0, 40000.0, y0, y1, 1,
+                       order, keys, pad, wmax, coff, cscale, ramp, *arrs, 0.25, 1e-4)
+    assert c == 0.0 and y == 0.0
+    assert contact - 1.0 <= x < 15000.0        # right of A, a few steps from where it was
+
+
+def test_a_move_never_lands_on_a_costlier_place_and_stays_in_the_rectangle():
+    """move_copy on fu's squeezed copies (real concave pieces, four rotations):
+    a move ends inside the closed strip and costs less than where the copy
+    was, or the copy stays (its place is one of the descents' starts)."""
+    from LeatherCutWorkbench.core.nesting.separation import move_copy, seed_rng
+    parts, opts = _fu()
+    inst = _Instance(_loose_row(parts, opts, gap=1.0), parts, opts)
+    tab = PairTable(inst.variants)
+    X, Y, V = inst.X.copy(), inst.Y.copy(), inst.V.copy()
+    x1 = inst.x0 + 0.6 * (inst.right_edge(X, V) - inst.x0)
+    X[:] = np.minimum(X, x1 - inst.cb[V, 2])                   # pile the right end up
+    W = np.ones((len(X), len(X)))
+    pad, wmax, coff, cscale, ramp, *arrs = _kernel_args(tab, inst.cb, inst.pad)
+    seed_rng(5)
+    moved = 0
+    for i in range(len(X)):
+        order = np.argsort(X + inst.cb[V, 0])
+        keys = (X + inst.cb[V, 0])[order]
+        here = copy_penalty(i, V[i], X[i], Y[i], X, Y, V, W[i], tab.n, 1e300, order, keys,
+                            -1e18, 1e18, coff, cscale, ramp, *arrs)
+        ch = np.asarray(inst.choices[inst.types[i]], dtype=np.int64)
+        x, y, v, c = move_copy(i, X, Y, V, W[i], ch, inst.cb, inst.x0, x1, inst.y0, inst.y1,
+                               tab.n, 50, 25, pad, wmax, coff, cscale, ramp, *arrs)
+        assert v in ch
+        assert c <= here + 1e-9
+        if c < here:                                           # moved: inside the closed strip
+            b = inst.cb[v]
+            assert inst.x0 - 1e-6 <= x + b[0] and x + b[2] <= x1 + 1e-6
+            assert inst.y0 - 1e-6 <= y + b[1] and y + b[3] <= inst.y1 + 1e-6
+            moved += 1
+        else:
+            assert (x, y, v) == (X[i], Y[i], V[i])             # nothing cheaper: stays
+        X[i], Y[i], V[i] = x, y, v
+    assert moved >= 3                                          # the piled-up copies got cheaper

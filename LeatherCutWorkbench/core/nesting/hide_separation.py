@@ -112,7 +112,8 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
     points of a random choice's pool (``pool[pool_lo[v]:pool_lo[v + 1]]``:
     vertices of and points inside its inner-fit region), ``n_local`` near
     its place (clamped to the region's bounding box ``ib``), then a
-    coordinate descent with a halving step (as :func:`separation.move_copy`).
+    coordinate descent with a halving step (the strip's
+    :func:`separation.move_copy` had this descent before it took three starts).
     ``cb``: outline boxes."""
     keys = X + cb[V, 0]
     order = np.argsort(keys)
@@ -153,7 +154,7 @@ def move_in_hide(i, X, Y, V, Wi, wc, choices, cb, ib, pool, pool_lo, nv, n_globa
     h = cb[bv, 3] - cb[bv, 1]
     sx = 0.05 * w
     sy = 0.05 * h
-    # The descent has :func:`separation.move_copy`'s shape but not its cost call
+    # The descent had :func:`separation.move_copy`'s shape but not its cost call
     # (container depth + pairs, no clamping to a rectangle) nor its floor; one
     # shared loop would take the cost as a function argument, and numba
     # (0.68, measured) does not disk-cache a kernel with a function argument:
