@@ -81,6 +81,11 @@ class Placer:
         self._ob_forms: Dict[tuple, list] = {}    # (bin region, exact) -> obstacle edge forms
         self._pockets: Dict[tuple, HullPockets] = {}   # (bin region, exact) -> hull and pockets
         self._region_rings: Dict[int, list] = {}  # variant -> its graded regions' (grade, ring)
+        #: hides: inner-fit regions of the part's own outline against the hide
+        #: outline's pockets (exact: a concave part may reach round a concave
+        #: stretch of the outline) instead of its convex hull's (a subset, about
+        #: half the time; see :meth:`_ifp`)
+        self.concave_fit = False
 
     # ---------------------------------------------------------------- regions
     def _spec_index(self, b: int) -> int:
@@ -99,23 +104,27 @@ class Placer:
         if spec.kind == "hide":
             from .nfp import region_ifp
             rk = spec.grade_key.get(self.type_grade[v.type_index], 0)
-            key = (self._spec_index(b) * 100003 + rk, v.index, True)
+            cf = self.concave_fit
+            key = (self._spec_index(b) * 100003 + rk, v.index, True, cf)
             hit = self._ifp_cache.get(key)
             if hit is None:
                 # out of time: the coarse region (fewer vertices, convex defects)
                 # and the part's convex hull against the defects too (one convex sum each)
                 exact = self.clock.exact()
-                key = key[:2] + (exact,)
+                key = key[:2] + (exact, cf)
                 hit = self._ifp_cache.get(key)
                 if hit is None:
                     outers, obstacles = spec.regions[rk] if exact or rk not in spec.coarse \
                         else spec.coarse[rk]
                     # exact: the true ring against the defects; its convex hull in the
-                    # hull of the hide, minus the pockets (a hide is nearly convex)
+                    # hull of the hide, minus the pockets (a hide is nearly convex) --
+                    # the sums with the pockets of its convex hull, or with
+                    # ``concave_fit`` of its own convex pieces (exact)
                     forms, pockets = self._region_forms(
                         (key[0], exact or rk not in spec.coarse), outers, obstacles)
                     hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
-                                     forms, fits=pockets.ifp(v.core_hull))
+                                     forms, fits=pockets.ifp(v.core_hull,
+                                                             v.core if cf and exact else None))
                     rc = self.region_check
                     if exact and hit and rc is not None and rc.applies(v.type_index):
                         hit = self._region_fit(self._spec_index(b), hit, rc, v)

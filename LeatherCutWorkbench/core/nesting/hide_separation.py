@@ -269,9 +269,9 @@ class HideSeparator:
 
     def _ifp_rings(self, hide: int, vi: int) -> List[np.ndarray]:
         """The fill's inner-fit region of variant ``vi`` on hide ``hide`` (its
-        convex hull against the hide outline, its own outline against the
-        defects).  The exact region of the part's own outline took 44 ms per
-        variant against 4 ms on Test2 and fitted no more copies (measured)."""
+        own outline against the defects; against the hide outline its convex
+        hull, or -- ``Placer.concave_fit``, the copy-to-hide worker's placer
+        -- its own outline: exact)."""
         key = (hide, vi)
         hit = self._ifp.get(key)
         if hit is None:
