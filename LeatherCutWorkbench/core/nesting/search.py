@@ -298,8 +298,7 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     assign = choose_hides and worker % 2 == 1
     # ... with exact inner-fit regions (the part's own outline against the hide
     # outline's pockets): the tight sets need copies whose convex hull would
-    # cross a concave stretch of the outline (and the separation's container
-    # depth sees the same regions)
+    # cross a concave stretch of the outline
     placer.concave_fit = assign
     best, evals = _first_fills(problem, placer, copies, worker, budget, quick=assign)
     cur_cost, cur_seq, cur_pl = best
