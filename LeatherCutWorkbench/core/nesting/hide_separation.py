@@ -270,9 +270,10 @@ class HideSeparator:
 
     def _ifp_rings(self, hide: int, vi: int) -> List[np.ndarray]:
         """The fill's inner-fit region of variant ``vi`` on hide ``hide`` (its
-        convex hull against the hide outline, its own outline against the
-        defects).  The exact region of the part's own outline took 44 ms per
-        variant against 4 ms on Test2 and fitted no more copies (measured)."""
+        own outline against the defects, its convex hull against the hide
+        outline: ``Placer.hide_ifp``).  The exact region of the part's own
+        outline took 44 ms per variant against 4 ms on Test2 and fitted no
+        more copies (measured twice)."""
         key = (hide, vi)
         hit = self._ifp.get(key)
         if hit is None:

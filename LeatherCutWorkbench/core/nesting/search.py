@@ -296,6 +296,10 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     # odd workers on hides: a quick first fill, then the copy-to-hide search
     # on the smallest hides (see _assign_hides)
     assign = choose_hides and worker % 2 == 1
+    # ... with exact inner-fit regions (the part's own outline against the hide
+    # outline's pockets): the tight sets need copies whose convex hull would
+    # cross a concave stretch of the outline
+    placer.concave_fit = assign
     best, evals = _first_fills(problem, placer, copies, worker, budget, quick=assign)
     cur_cost, cur_seq, cur_pl = best
     cur_hides = best_hides = placer.bin_order
