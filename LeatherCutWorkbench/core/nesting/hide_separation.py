@@ -52,7 +52,7 @@ from numba import njit
 
 from .overlap import (COST_OFFSET, PairTable, _edge_rows, copy_penalty, overlap_matrix,
                       pack_rings, pair_depth)
-from .separation import _clamp, colliding_total, reweigh, seed_rng
+from .separation import Strikes, _clamp, colliding_total, reweigh, seed_rng
 
 #: a copy in the hide: (type index, variant index, x, y), grid units
 Copy = Tuple[int, int, int, int]
@@ -362,8 +362,7 @@ class HideSeparator:
         total = colliding_total(od, eps) + colliding_total(cd, eps)
         if total == 0.0:
             return True
-        best = (total, X.copy(), Y.copy(), V.copy())
-        stale = strike = 0
+        track = Strikes(total, X, Y, V, PATIENCE, STRIKES)
         while time.monotonic() < deadline and not (give_up is not None and give_up()):
             hit = np.nonzero((od > eps).any(axis=1) | (cd[:, 0] > eps))[0]
             rng.shuffle(hit)
@@ -374,18 +373,11 @@ class HideSeparator:
                 return True
             reweigh(od, W, eps)
             reweigh(cd, WC, eps)
-            if total < best[0] * 0.999:
-                best = (total, X.copy(), Y.copy(), V.copy())
-                stale = 0
-            else:
-                stale += 1
-                if stale >= PATIENCE:
-                    strike += 1
-                    stale = 0
-                    if strike >= STRIKES:
-                        break
-                    X[:], Y[:], V[:] = best[1], best[2], best[3]
-                    od, cd = kern.measure(X, Y, V)
+            step = track.after_sweep(total, X, Y, V)
+            if step == "stop":
+                break
+            if step == "reset":
+                od, cd = kern.measure(X, Y, V)
         return False
 
 

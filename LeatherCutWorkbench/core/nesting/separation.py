@@ -237,6 +237,41 @@ def colliding_total(od, eps: float) -> float:
     return total
 
 
+class Strikes:
+    """The least-colliding layout of one guided local search and its give-up
+    rule: a sweep that lowers the best total overlap by less than 0.1 % is
+    stale; after ``patience`` stale sweeps in a row the search strikes and
+    goes back to the best layout, and after ``strikes`` strikes it gives up."""
+
+    def __init__(self, total: float, X, Y, V, patience: int, strikes: int):
+        self.best = (total, X.copy(), Y.copy(), V.copy())
+        self.patience = patience
+        self.strikes = strikes
+        self._stale = 0
+        self._strike = 0
+
+    def after_sweep(self, total: float, X, Y, V) -> str:
+        """``"on"``: search on; ``"reset"``: X, Y, V now hold the best layout
+        again (their overlaps must be measured anew); ``"stop"``: give up."""
+        if total < self.best[0] * 0.999:
+            self.best = (total, X.copy(), Y.copy(), V.copy())
+            self._stale = 0
+            return "on"
+        self._stale += 1
+        if self._stale < self.patience:
+            return "on"
+        self._strike += 1
+        self._stale = 0
+        if self._strike >= self.strikes:
+            return "stop"
+        self.restore(X, Y, V)
+        return "reset"
+
+    def restore(self, X, Y, V) -> None:
+        """Put the best layout seen into X, Y, V."""
+        X[:], Y[:], V[:] = self.best[1], self.best[2], self.best[3]
+
+
 @njit(cache=True, nogil=True)
 def reweigh(od, W, eps: float) -> None:
     """Guided local search: the weight of a colliding pair grows (x1.2 for the
@@ -311,9 +346,7 @@ class Separator:
         total = colliding_total(od, self.eps)
         if total == 0.0:
             return True
-        best = (total, X.copy(), Y.copy(), V.copy())
-        stale = 0
-        strike = 0
+        track = Strikes(total, X, Y, V, patience, strikes)
         while time.monotonic() < deadline and not self.stop.is_set():
             hit = np.nonzero((od > self.eps).any(axis=1))[0]
             rng.shuffle(hit)
@@ -325,17 +358,10 @@ class Separator:
             if give_up is not None and give_up():
                 break
             reweigh(od, self.W, self.eps)
-            if total < best[0] * 0.999:
-                best = (total, X.copy(), Y.copy(), V.copy())
-                stale = 0
-            else:
-                stale += 1
-                if stale >= patience:
-                    strike += 1
-                    stale = 0
-                    if strike >= strikes:
-                        break
-                    X[:], Y[:], V[:] = best[1], best[2], best[3]
-                    od = self.overlaps(X, Y, V)
-        X[:], Y[:], V[:] = best[1], best[2], best[3]
+            step = track.after_sweep(total, X, Y, V)
+            if step == "stop":
+                break
+            if step == "reset":
+                od = self.overlaps(X, Y, V)
+        track.restore(X, Y, V)
         return False
