@@ -80,7 +80,6 @@ class Tail:
                  outputs: Sequence[str] = ()) -> None:
         self.started = options.started_at if options.started_at is not None else time.monotonic()
         self.budget = options.time_budget
-        self.parts = parts
         self.outputs = tuple(outputs)
         #: measured (build + check) seconds per copy, None until measured
         self.per_copy: Optional[float] = None
@@ -92,7 +91,10 @@ class Tail:
         self._build: Optional[Tuple[float, float]] = None     # (wall, CPU) s per copy
         self._check: Optional[Tuple[float, float]] = None
         self._memo: Dict[tuple, List[str]] = {}
-        self._vertices = {p.id: _vertices(p) for p in parts}
+        #: copies of the job and the segments of an average copy
+        self._copies = sum(max(p.quantity, 0) for p in parts)
+        self._copy_vertices = (sum(_vertices(p) * max(p.quantity, 0) for p in parts)
+                               / self._copies if self._copies else 0.0)
         spec = options.container
         self._prior = PRIOR_PER_COPY_S.get(spec.kind, PRIOR_PER_COPY_S["sheet"])
         if spec.kind == "hide" and spec.hides:
@@ -102,11 +104,9 @@ class Tail:
             hide_area = sum(abs(signed_area(h.outline)) for h in spec.hides) or 1.0
             part_area = sum(_box_area(p) * max(p.quantity, 0) for p in parts)
             self._container_vertices = verts * min(1.0, 2.0 * part_area / hide_area)
-            n = sum(max(p.quantity, 0) for p in parts)
-            per_copy = sum(self._vertices[p.id] * max(p.quantity, 0) for p in parts) / n if n else 0.0
             base, rate = PRIOR_HIDE_CPU_S
-            self._prior = min(PRIOR_HIDE_MAX_S,
-                              PRIOR_CONTENTION * (base + rate * per_copy * verts / len(spec.hides)))
+            self._prior = min(PRIOR_HIDE_MAX_S, PRIOR_CONTENTION
+                              * (base + rate * self._copy_vertices * verts / len(spec.hides)))
         else:
             self._container_vertices = 4 * max(spec.count or 1, 1)
 
@@ -154,12 +154,11 @@ class Tail:
         """CPU seconds of the declared outputs of ``copies`` average copies and
         the containers (hides: in proportion to the copies placed)."""
         costs = [OUTPUT_CPU_S[k] for k in self.outputs if k in OUTPUT_CPU_S]
-        n = sum(max(p.quantity, 0) for p in self.parts)
+        n = self._copies
         if not costs or not n:
             return 0.0
         share = min(copies, n) / n
-        per_copy = sum(self._vertices[p.id] * max(p.quantity, 0) for p in self.parts) / n
-        vertices = per_copy * min(copies, n) + share * self._container_vertices
+        vertices = self._copy_vertices * min(copies, n) + share * self._container_vertices
         return sum(fixed + rate * vertices for fixed, rate in costs)
 
     def promised_end(self) -> float:
