@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import pyclipper
@@ -26,6 +26,9 @@ import pyclipper
 from .hide_shapes import HullPockets, superset_rings
 from .nfp import Clock, NfpCache
 from .shapes import IntPath, Variant
+
+if TYPE_CHECKING:
+    from .hide_regions import HideRegions
 
 _NZ = pyclipper.PFT_NONZERO
 
@@ -54,7 +57,7 @@ class BinSpec:
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
     material: float = math.inf    # hide: usable area (grid units^2) of its largest region
     coarse: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
-    prep: Optional[object] = None
+    prep: Optional[HideRegions] = None
 
     def ready(self) -> "BinSpec":
         """This spec with its regions built (once; see ``prep``)."""
