@@ -15,7 +15,7 @@ from LeatherCutWorkbench.core.nesting.engine import fill_metrics
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.overlap import PairTable, copy_penalty, pair_depth
 from LeatherCutWorkbench.core.nesting.shapes import make_variants, piece_from_part
-from LeatherCutWorkbench.core.nesting.separation import Separator
+from LeatherCutWorkbench.core.nesting.separation import Separator, colliding_total, seed_rng
 from LeatherCutWorkbench.core.nesting.strip_shrink import (_Best, _explore, _Instance, _search_share,
                                                          _swap_large,
                                                          improve_last_sheet,
@@ -322,6 +322,49 @@ def test_exploration_retries_from_its_own_failed_layout_inside_the_strip():
         fill_metrics(parts, new, opts)
         assert _valid(parts, new, opts) == []
         assert new.metrics["strip_length_mm"] < lay.metrics["strip_length_mm"]
+
+
+def test_exploration_keeps_its_target_and_a_retry_from_the_pool_separates_on_albano():
+    """Exploration on albano (ESICUP, 24 garment copies): after a failed
+    separation the target does not move up (sparrow's fixed shrink): the retry
+    starts from an overlapping layout of the pool at the same length ``x1``.
+    The first retry that separates gives a layout the checker passes, no
+    longer than ``x1`` and so shorter than the best valid layout it started
+    below."""
+    inst0 = read_esicup(os.path.join(DATA, "albano.json"))
+    parts = inst0.parts
+    opts = NestOptions(container=ContainerSpec.strip(inst0.strip_height), time_budget=0.5,
+                       max_evaluations=8, seed=1, workers=1)
+    lay = nest(parts, opts)
+    inst = _Instance(lay, parts, opts)
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
+                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
+    shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+    calls = []
+    real = sep.separate
+
+    def recording(X, Y, V, x1, *a, **k):
+        best = shared.get()[0]
+        start = colliding_total(sep.overlaps(X, Y, V), sep.eps)
+        ok = real(X, Y, V, x1, *a, **k)
+        calls.append(dict(x1=x1, best=best, ok=ok, start=start, end=(X.copy(), Y.copy(), V.copy())))
+        if len(calls) > 1 and ok and not calls[-2]["ok"] and calls[-2]["best"] == best:
+            sep.stop.set()                # the first successful retry from the pool
+        return ok
+    sep.separate = recording
+    seed_rng(1)
+    _explore(inst, sep, shared, time.monotonic() + 60.0, np.random.default_rng(1), [])
+    pairs = list(zip(calls, calls[1:]))
+    retries = [(a, b) for a, b in pairs if not a["ok"] and b["best"] == a["best"]]
+    assert retries and retries[-1][1]["ok"], "no retry from the pool separated"
+    assert all(b["x1"] == a["x1"] and b["start"] > 0.0 for a, b in retries)
+    X, Y, V = retries[-1][1]["end"]
+    x1, best = retries[-1][1]["x1"], retries[-1][1]["best"]
+    assert inst.right_edge(X, V) <= x1 + 1e-6 < best
+    new = inst.to_layout(lay, X, Y, V)
+    fill_metrics(parts, new, opts)
+    assert _valid(parts, new, opts) == []
+    assert new.metrics["strip_length_mm"] < lay.metrics["strip_length_mm"]
 
 
 def test_swap_of_a_large_and_a_small_copy_carries_the_covered_copies_into_the_room_left():
