@@ -73,7 +73,7 @@ SHEET_STALL_SHARE = 0.2
 #: layout for this share of the budget (at least ``STALL_MIN_S``): it reaches
 #: its plateau in a few seconds (measured: shirts 3.6 s, shapes0 5.2 s, fu
 #: 6.8 s, albano 4.1 s of a 15 s search), the phase keeps gaining after that
-#: (albano at 60 s: the phase's first 2 s shorten the engine's layout by ~2.5 %;
+#: (albano at 60 s: the phase's first 2 s shorten the engine's layout by 2.8-3.2 %;
 #: 0.05 of the budget left the engine searching 4-8 s of 60 s, 0.02 ends it at 2-3 s)
 STALL_SHARE = 0.02
 STALL_MIN_S = 1.0
