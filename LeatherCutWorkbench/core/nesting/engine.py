@@ -70,8 +70,8 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
             return bins, [], spec.count is None, spec.count
         return bins, [], False, 1
     # built when the fill first opens each hide (:mod:`hide_regions`)
-    bins = [BinSpec("hide", grade_key={g: g for g in grades},
-                    prep=HideRegions(c, sorted(set(grades)), m, scale)) for c in spec.hides]
+    bins = [BinSpec("hide", prep=HideRegions(c, sorted(set(grades)), m, scale))
+            for c in spec.hides]
     return bins, list(spec.hides), False, len(spec.hides)
 
 
