@@ -246,30 +246,30 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     def build(order, placements) -> Layout:
         return _to_layout(parts, types, variants, order, placements, options, scale, hides)
 
-    ends: List[float] = []
+    timed: List[bool] = []          # [True] once the tail was timed on the first layout
 
     # worker processes that search on while the parent times the tail (one worker:
     # the search runs in this process and waits for the measurement)
     searching = n_workers if n_workers > 1 and budget > 0 and len(copies) >= 2 else 0
 
     def measured_end(first_best) -> float:
-        """The search end once the tail's cost is measured on the first layout
-        (its build and check, timed while the workers search on): earlier or
-        later than ``t_end``, never after ``latest``."""
-        if not ends:
-            if budget > 0 and time.monotonic() < t_end:
-                if tail.per_copy is None:
-                    tail.busy = searching
-                    t, c = time.monotonic(), time.thread_time()
-                    layout = build(first_best[1], first_best[2])
-                    tail.note_build(time.monotonic() - t, len(layout.placements),
-                                    time.thread_time() - c)
-                    tail.check(parts, layout, options)
-                ends.append(min(latest, _deadlines(t_start, budget,
-                                                   _reserve(budget, len(copies), tail))[0]))
-            else:                   # past the search end: nothing to move, no measurement
-                ends.append(t_end)
-        return ends[0]
+        """The search end once a layout exists: the tail's build and check
+        timed on the first one (while the workers search on) and the
+        contention expected at the end (:meth:`Tail.note_load`, sampled all
+        along), so earlier or later than ``t_end``, never after ``latest``.
+        A first layout that comes after ``t_end`` leaves the end there."""
+        if not timed:
+            timed.append(budget > 0 and time.monotonic() < t_end)
+            if timed[0] and tail.per_copy is None:
+                tail.busy = searching
+                t, c = time.monotonic(), time.thread_time()
+                layout = build(first_best[1], first_best[2])
+                tail.note_build(time.monotonic() - t, len(layout.placements),
+                                time.thread_time() - c)
+                tail.check(parts, layout, options)
+        if not timed[0]:
+            return t_end
+        return min(latest, _deadlines(t_start, budget, _reserve(budget, len(copies), tail))[0])
 
     best = _Best(summary, on_best, build)
 
@@ -291,6 +291,9 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             end[0] = measured_end(best.best)
 
         def stop_now() -> bool:
+            if best.best is not None:
+                tail.note_load(1)
+                end[0] = measured_end(best.best)
             return (stop is not None and stop()) or time.monotonic() > end[0]
 
         b = Budget(latest, quick, max_eval, stop_now, offer, tick, hard_stop=boxes,
@@ -300,7 +303,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     else:
         evaluations = _run_pool(problem, copies, options.seed, n_workers, (t_end, latest),
                                 (quick, slow, boxes, hard), max_eval, best, progress, frac, stop,
-                                measured_end)
+                                measured_end, tail)
         workers_used = n_workers
     best.publish(force=True)
     cost, order, placements, _ = best.best
@@ -363,12 +366,13 @@ def _closable_stdin() -> Iterator[None]:
 def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tuple[float, float],
               fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
               progress: Optional[ProgressFn], frac, stop,
-              measured_end: Callable[[tuple], float]) -> int:
+              measured_end: Callable[[tuple], float], tail: Tail) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
     deadline (or on Stop): the wall time holds whatever a worker is doing.
     ``ends`` = (the deadline, the latest end the workers are given); the
-    deadline moves to ``measured_end(first best)`` once a layout exists.
+    deadline moves to ``measured_end(first best)`` once a layout exists;
+    ``tail`` samples the machine's load meanwhile (:meth:`Tail.note_load`).
     Returns the evaluations the workers reported."""
     t_end, latest = ends
     with _closable_stdin():
@@ -389,6 +393,7 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
                 _drain(queue, best, done, errors, timeout=0.05)
                 best.publish()              # shown first, then the tail measured on it
                 report(progress, frac(), best.message())
+                tail.note_load(1 + sum(p.is_alive() for p in procs))
                 if best.best is not None:
                     t_end = measured_end(best.best)
                 if stop is not None and stop() and best.best is not None:
