@@ -245,3 +245,17 @@ def test_the_outputs_cost_the_import_of_their_writer_only_when_it_is_not_importe
     monkeypatch.delitem(sys.modules, module)
     cold = t.reserve(7)
     assert abs(cold - imported - tail.FACTOR * t.contention * cpu) < 1e-9
+
+
+def test_the_other_workers_wait_for_the_first_layout_only_on_a_busy_machine(monkeypatch):
+    """Worker 0's quick first fill shared the cores with worker 1's exact one
+    (Baldacci Test10 at load ~2 on 2 cores: 2 s of CPU took 4 s wall): with
+    more busy processes than cores the other workers wait for the first layout."""
+    from LeatherCutWorkbench.core.nesting import engine
+    monkeypatch.setattr(tail, "_cores", lambda: 2)
+    monkeypatch.setattr(engine, "runnable", lambda: 1)      # this process alone
+    assert not engine._busy(2)
+    monkeypatch.setattr(engine, "runnable", lambda: 2)      # one other program
+    assert engine._busy(2) and not engine._busy(1)
+    monkeypatch.setattr(engine, "runnable", lambda: None)   # unknown: never wait
+    assert not engine._busy(8)

@@ -33,7 +33,7 @@ from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part
-from .tail import EXIT_S, Tail, current
+from .tail import EXIT_S, Tail, current, runnable
 
 #: The grid resolution: the largest container or part dimension spans this many units.
 GRID_UNITS = 2.0e6
@@ -83,6 +83,9 @@ def _workers(options: NestOptions) -> int:
 
 #: seconds the parent waits after the deadline for workers to finish, then ends them
 _GRACE_S = 0.3
+#: on a busy machine the other workers wait for worker 0's first layout at most
+#: this share of the budget (:func:`_run_pool`)
+_WAIT_FIRST = 0.2
 
 
 def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = False,
@@ -238,7 +241,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     # than the prior one gives the search its time back
     latest = _deadlines(t_start, budget, _reserve_floor(budget))[0]
     max_eval = options.max_evaluations if budget > 0 else 4
-    net = [net_area(h) for h in hides]
+    net = problem.hide_net or []            # (net areas cost 7 ms a Test10 hide)
 
     def summary(cost, placements) -> str:
         return _summary(problem, options, scale, net, cost, placements, len(copies))
@@ -373,16 +376,25 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
     ``ends`` = (the deadline, the latest end the workers are given); the
     deadline moves to ``measured_end(first best)`` once a layout exists;
     ``tail`` samples the machine's load meanwhile (:meth:`Tail.note_load`).
+    On a machine with fewer free cores than workers (:func:`_busy`) the
+    workers other than 0 wait for the first layout (at most ``_WAIT_FIRST``
+    of the search): worker 0's quick first fill gets the cores first
+    (Baldacci Test10 at load ~2 on 2 cores: its 2 s CPU took 4 s wall next
+    to worker 1).
     Returns the evaluations the workers reported."""
     t_end, latest = ends
     with _closable_stdin():
         ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
         queue = ctx.Queue()
         stop_event = ctx.Event()
+        first = ctx.Event()
+        now = time.monotonic()
+        wait = (first, now + _WAIT_FIRST * (latest - now)) if _busy(n) else None
         procs = [ctx.Process(target=worker_main, daemon=True,
                              args=(problem, copies, seed, i, latest,
                                    fill_limits[0] if i == 0 else fill_limits[1],
-                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3]))
+                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3],
+                                   wait if i > 0 else None))
                  for i in range(n)]
         for p in procs:
             p.start()
@@ -395,6 +407,7 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
                 report(progress, frac(), best.message())
                 tail.note_load(1 + sum(p.is_alive() for p in procs))
                 if best.best is not None:
+                    first.set()
                     t_end = measured_end(best.best)
                 if stop is not None and stop() and best.best is not None:
                     stop_event.set()
@@ -420,6 +433,14 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
     if best.best is None:
         raise LeatherCutError("nesting workers failed: " + ("; ".join(errors) or "no layout"))
     return sum(max(done.get(i, 0), best.evals.get(i, 0)) for i in range(n))
+
+
+def _busy(n_workers: int) -> bool:
+    """Would ``n_workers`` busy processes and the tasks running now (this one
+    left out) be more than the cores?  (False when unknown.)"""
+    from .tail import _cores
+    running = runnable()
+    return running is not None and running - 1 + n_workers > _cores()
 
 
 def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout: float) -> None:
