@@ -259,3 +259,23 @@ def test_the_other_workers_wait_for_the_first_layout_only_on_a_busy_machine(monk
     assert engine._busy(2) and not engine._busy(1)
     monkeypatch.setattr(engine, "runnable", lambda: None)   # unknown: never wait
     assert not engine._busy(8)
+
+
+def test_the_writer_of_a_declared_output_is_imported_during_the_search():
+    """A hide benchmark file reads no DXF, so ezdxf is not imported before the
+    first layout; with a DXF output declared the engine's parent imports it
+    while the workers search, and the reserve drops by its import cost."""
+    code = ("import sys, os\n"
+            "from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, nest, tail\n"
+            "from LeatherCutWorkbench.core.nesting.esicup import read_esicup\n"
+            f"inst = read_esicup({os.path.join(DATA, 'Test8.json')!r})\n"
+            "opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=3, workers=2)\n"
+            "assert 'ezdxf' not in sys.modules\n"
+            "with tail.writing(['dxf']):\n"
+            "    lay = nest(inst.parts, opts)\n"
+            "print('ezdxf' in sys.modules, lay.metrics['placed_count'])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT,
+                         env=dict(os.environ, PYTHONPATH=ROOT), timeout=120)
+    assert out.returncode == 0, out.stderr
+    loaded, placed = out.stdout.split()
+    assert loaded == "True" and int(placed) > 0

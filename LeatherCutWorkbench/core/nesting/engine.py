@@ -270,6 +270,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
                 tail.note_build(time.monotonic() - t, len(layout.placements),
                                 time.thread_time() - c)
                 tail.check(parts, layout, options)
+            if searching:
+                tail.preload()      # the outputs' libraries, while the workers search
         if not timed[0]:
             return t_end
         return min(latest, _deadlines(t_start, budget, _reserve(budget, len(copies), tail))[0])

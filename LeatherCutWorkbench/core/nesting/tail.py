@@ -23,8 +23,9 @@ it must fit in the budget (T + 10 % + 1 s promised), so the search ends
 * the outputs the caller declared with :func:`writing` cost a CPU time per
   file and per written vertex (measured, ``OUTPUT_CPU_S``), plus importing
   the library that writes them when it is not imported yet
-  (``OUTPUT_IMPORT``: the CLI imports ezdxf at start-up, so its DXF costs
-  the document only), times the same contention (``PRIOR_CONTENTION``
+  (``OUTPUT_IMPORT``; the engine's parent imports it while the workers
+  search, :meth:`Tail.preload`, so the DXF then costs the document only),
+  times the same contention (``PRIOR_CONTENTION``
   until measured), plus ``EXIT_S``.
 
 :meth:`Tail.check` remembers its verdicts: the same layout under the same
@@ -205,6 +206,13 @@ class Tail:
         imports = {OUTPUT_IMPORT[k] for k in self.outputs if k in OUTPUT_IMPORT}
         return (sum(fixed + rate * vertices for fixed, rate in costs)
                 + sum(cpu for module, cpu in imports if module not in sys.modules))
+
+    def preload(self) -> None:
+        """Import the declared outputs' writer libraries now (the engine's parent
+        does it while its workers search), so the tail no longer pays for it."""
+        import importlib
+        for module, _cpu in {OUTPUT_IMPORT[k] for k in self.outputs if k in OUTPUT_IMPORT}:
+            importlib.import_module(module)
 
     def promised_end(self) -> float:
         """``started`` + T + 10 % + 1 s of the whole nest (inf without a budget)."""
