@@ -279,3 +279,22 @@ def test_the_writer_of_a_declared_output_is_imported_during_the_search():
     assert out.returncode == 0, out.stderr
     loaded, placed = out.stdout.split()
     assert loaded == "True" and int(placed) > 0
+
+
+def test_before_the_first_layout_a_loaded_machine_only_raises_the_prior_contention(monkeypatch):
+    """One sample before the deadlines: a machine busier than the prior
+    assumes makes the prior tail (and the first fill's last resort) larger, a
+    quiet one leaves the prior; once the tail is timed the samples decide."""
+    monkeypatch.setattr(tail, "_cores", lambda: 2)
+    parts = _parts()
+    opts = NestOptions(container=ContainerSpec.sheet(200, 100), time_budget=10)
+    for running, expected in ((1, tail.PRIOR_CONTENTION), (9, 4.5)):
+        monkeypatch.setattr(tail, "runnable", lambda: running)
+        t = tail.Tail(parts, opts)
+        t.note_load(1)
+        assert t.contention == expected
+    t = tail.Tail(parts, opts)
+    monkeypatch.setattr(tail, "runnable", lambda: 1)
+    t.note_load(1)
+    t.note_build(0.1, 3, cpu=0.1)
+    assert t.contention == 1.0

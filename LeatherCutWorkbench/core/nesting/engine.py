@@ -228,6 +228,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     n_workers = _workers(options)
     budget = options.time_budget
     tail = current(parts, options)
+    tail.note_load(1)              # a visibly loaded machine: a larger prior tail
     on_hides = options.container.kind == "hide"
     # hides (heavy checks and outputs): the last resort also keeps the outputs' files free
     t_end, quick, slow, boxes, hard = _deadlines(t_start, budget,
