@@ -123,7 +123,7 @@ def test_finely_flattened_hide_edges_are_simplified_inside_the_material():
     opts = NestOptions(container=ContainerSpec.hide(hide), time_budget=3, workers=1)
     scale = 100.0
     bins = _bins(opts, scale, 0.0, [full])[0]
-    outers, _holes = bins[0].ready().regions[full]
+    outers, _holes = bins[0].ready().region(full)
     exact = Polygon(usable_region(hide, full).exterior)     # one piece: outline minus zones
     got = Polygon([(x / scale, y / scale) for x, y in outers[0]])
     assert len(outers) == 1 and len(outers[0]) < 0.45 * len(hide.outline)

@@ -46,25 +46,43 @@ class BinSpec:
     ``coarse``: per grade a subset of the region with few vertices and convex
     obstacles, used under time pressure.
 
-    ``prep`` (hides): a :class:`hide_regions.HideRegions` that builds
-    ``regions``, ``coarse`` and ``material`` when :meth:`ready` is first
-    called -- the fill calls it when it opens the hide, so a hide the search
-    never tries is never prepared (None: the fields are already set)."""
+    ``prep`` (hides): a :class:`hide_regions.HideRegions` that builds them
+    when first needed: ``material`` and ``grade_key`` when :meth:`ready` is
+    first called -- the fill calls it when it opens the hide, so a hide the
+    search never tries is never prepared --, each region key's exact region
+    on its first :meth:`region`, its coarse one on its first :meth:`coarse_region`
+    (a fill under time pressure builds no exact region).  With ``prep`` None
+    the fields are already set."""
 
     kind: str
     rect: Tuple[int, int, int, int] = (0, 0, 0, 0)
     regions: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
     grade_key: Dict[int, int] = field(default_factory=dict)   # part grade -> region key
     material: float = math.inf    # hide: usable area (grid units^2) of its largest region
-    coarse: Dict[int, Tuple[List[IntPath], List[IntPath]]] = field(default_factory=dict)
+    coarse: Dict[int, Optional[Tuple[List[IntPath], List[IntPath]]]] = field(default_factory=dict)
     prep: Optional[HideRegions] = None
+    _opened: bool = field(default=False, repr=False, compare=False)
 
     def ready(self) -> "BinSpec":
-        """This spec with its regions built (once; see ``prep``)."""
-        if self.prep is not None:
-            self.regions, self.coarse, self.material = self.prep.build()
-            self.prep = None
+        """This spec with ``material`` and ``grade_key`` set (once; see ``prep``)."""
+        if self.prep is not None and not self._opened:
+            self.material = self.prep.material()
+            self.grade_key = self.prep.keys()
+            self._opened = True
         return self
+
+    def region(self, key: int) -> Tuple[List[IntPath], List[IntPath]]:
+        """The exact (outers, obstacles) of region ``key`` (built on first use)."""
+        hit = self.regions.get(key)
+        if hit is None and self.prep is not None:
+            hit = self.regions[key] = self.prep.exact(key)
+        return hit if hit is not None else ([], [])
+
+    def coarse_region(self, key: int) -> Optional[Tuple[List[IntPath], List[IntPath]]]:
+        """The coarse subset of region ``key`` (built on first use; None: empty region)."""
+        if key not in self.coarse and self.prep is not None:
+            self.coarse[key] = self.prep.coarse(key)
+        return self.coarse.get(key)
 
 
 class Placer:
@@ -131,14 +149,14 @@ class Placer:
                 key = key[:2] + (exact, cf)
                 hit = self._ifp_cache.get(key)
                 if hit is None:
-                    outers, obstacles = spec.regions[rk] if exact or rk not in spec.coarse \
-                        else spec.coarse[rk]
+                    rough = None if exact else spec.coarse_region(rk)
+                    outers, obstacles = spec.region(rk) if rough is None else rough
                     # exact: the true ring against the defects; its convex hull in the
                     # hull of the hide, minus the pockets (a hide is nearly convex) --
                     # the sums with the pockets of its convex hull, or with
                     # ``concave_fit`` of its own convex pieces (exact)
-                    forms, pockets = self._region_forms(
-                        (key[0], exact or rk not in spec.coarse), outers, obstacles)
+                    forms, pockets = self._region_forms((key[0], rough is None), outers,
+                                                        obstacles)
                     hit = region_ifp(outers, obstacles, v.core if exact else v.core_hull,
                                      forms, fits=pockets.ifp(v.core_hull,
                                                              v.core if cf and exact else None))
@@ -192,14 +210,14 @@ class Placer:
         region rings (60-100 convex pieces) took ~1 s per hide and variant."""
         from .nfp import region_ifp
         from .shapes import convex_hull
-        spec = self.bin_specs[sb]
+        spec = self.bin_specs[sb].ready()
         rings = self._region_rings.get(v.index)
         if rings is None:
             rings = self._region_rings[v.index] = superset_rings(
                 rc.grid_rings(v.type_index, v.angle, v.mirrored), v)
         for g, ring in rings:
             rk = spec.grade_key.get(g, g)
-            outers, obstacles = spec.regions[rk]
+            outers, obstacles = spec.region(rk)
             forms, pockets = self._region_forms((sb * 100003 + rk, True), outers, obstacles)
             inner = region_ifp(outers, obstacles, ring, forms,
                                fits=pockets.ifp(convex_hull(ring), ring))

@@ -33,7 +33,7 @@ from .options import NestOptions
 from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part
-from .tail import EXIT_S, Tail, current
+from .tail import EXIT_S, Tail, current, runnable
 
 #: The grid resolution: the largest container or part dimension spans this many units.
 GRID_UNITS = 2.0e6
@@ -70,8 +70,8 @@ def _bins(options: NestOptions, scale: float, half_gap: float,
             return bins, [], spec.count is None, spec.count
         return bins, [], False, 1
     # built when the fill first opens each hide (:mod:`hide_regions`)
-    bins = [BinSpec("hide", grade_key={g: g for g in grades},
-                    prep=HideRegions(c, sorted(set(grades)), m, scale)) for c in spec.hides]
+    bins = [BinSpec("hide", prep=HideRegions(c, sorted(set(grades)), m, scale))
+            for c in spec.hides]
     return bins, list(spec.hides), False, len(spec.hides)
 
 
@@ -83,6 +83,9 @@ def _workers(options: NestOptions) -> int:
 
 #: seconds the parent waits after the deadline for workers to finish, then ends them
 _GRACE_S = 0.3
+#: on a busy machine the other workers wait for worker 0's first layout at most
+#: this share of the budget (:func:`_run_pool`)
+_WAIT_FIRST = 0.2
 
 
 def _deadlines(t_start: float, budget: float, reserve: float, hides: bool = False,
@@ -225,6 +228,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     n_workers = _workers(options)
     budget = options.time_budget
     tail = current(parts, options)
+    tail.note_load(1)              # a visibly loaded machine: a larger prior tail
     on_hides = options.container.kind == "hide"
     # hides (heavy checks and outputs): the last resort also keeps the outputs' files free
     t_end, quick, slow, boxes, hard = _deadlines(t_start, budget,
@@ -238,7 +242,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     # than the prior one gives the search its time back
     latest = _deadlines(t_start, budget, _reserve_floor(budget))[0]
     max_eval = options.max_evaluations if budget > 0 else 4
-    net = [net_area(h) for h in hides]
+    net = problem.hide_net or []            # (net areas cost 7 ms a Test10 hide)
 
     def summary(cost, placements) -> str:
         return _summary(problem, options, scale, net, cost, placements, len(copies))
@@ -246,30 +250,32 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     def build(order, placements) -> Layout:
         return _to_layout(parts, types, variants, order, placements, options, scale, hides)
 
-    ends: List[float] = []
+    timed: List[bool] = []          # [True] once the tail was timed on the first layout
 
     # worker processes that search on while the parent times the tail (one worker:
     # the search runs in this process and waits for the measurement)
     searching = n_workers if n_workers > 1 and budget > 0 and len(copies) >= 2 else 0
 
     def measured_end(first_best) -> float:
-        """The search end once the tail's cost is measured on the first layout
-        (its build and check, timed while the workers search on): earlier or
-        later than ``t_end``, never after ``latest``."""
-        if not ends:
-            if budget > 0 and time.monotonic() < t_end:
-                if tail.per_copy is None:
-                    tail.busy = searching
-                    t, c = time.monotonic(), time.thread_time()
-                    layout = build(first_best[1], first_best[2])
-                    tail.note_build(time.monotonic() - t, len(layout.placements),
-                                    time.thread_time() - c)
-                    tail.check(parts, layout, options)
-                ends.append(min(latest, _deadlines(t_start, budget,
-                                                   _reserve(budget, len(copies), tail))[0]))
-            else:                   # past the search end: nothing to move, no measurement
-                ends.append(t_end)
-        return ends[0]
+        """The search end once a layout exists: the tail's build and check
+        timed on the first one (while the workers search on) and the
+        contention expected at the end (:meth:`Tail.note_load`, sampled all
+        along), so earlier or later than ``t_end``, never after ``latest``.
+        A first layout that comes after ``t_end`` leaves the end there."""
+        if not timed:
+            timed.append(budget > 0 and time.monotonic() < t_end)
+            if timed[0] and tail.per_copy is None:
+                tail.busy = searching
+                t, c = time.monotonic(), time.thread_time()
+                layout = build(first_best[1], first_best[2])
+                tail.note_build(time.monotonic() - t, len(layout.placements),
+                                time.thread_time() - c)
+                tail.check(parts, layout, options)
+            if searching:
+                tail.preload()      # the outputs' libraries, while the workers search
+        if not timed[0]:
+            return t_end
+        return min(latest, _deadlines(t_start, budget, _reserve(budget, len(copies), tail))[0])
 
     best = _Best(summary, on_best, build)
 
@@ -291,6 +297,9 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             end[0] = measured_end(best.best)
 
         def stop_now() -> bool:
+            if best.best is not None:
+                tail.note_load(1)
+                end[0] = measured_end(best.best)
             return (stop is not None and stop()) or time.monotonic() > end[0]
 
         b = Budget(latest, quick, max_eval, stop_now, offer, tick, hard_stop=boxes,
@@ -300,7 +309,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     else:
         evaluations = _run_pool(problem, copies, options.seed, n_workers, (t_end, latest),
                                 (quick, slow, boxes, hard), max_eval, best, progress, frac, stop,
-                                measured_end)
+                                measured_end, tail)
         workers_used = n_workers
     best.publish(force=True)
     cost, order, placements, _ = best.best
@@ -363,22 +372,32 @@ def _closable_stdin() -> Iterator[None]:
 def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tuple[float, float],
               fill_limits: Tuple[float, float, float, float], max_eval: Optional[int], best: _Best,
               progress: Optional[ProgressFn], frac, stop,
-              measured_end: Callable[[tuple], float]) -> int:
+              measured_end: Callable[[tuple], float], tail: Tail) -> int:
     """One search process per worker.  The parent collects every new best,
     reports it live, and ends the workers itself ``_GRACE_S`` after the
     deadline (or on Stop): the wall time holds whatever a worker is doing.
     ``ends`` = (the deadline, the latest end the workers are given); the
-    deadline moves to ``measured_end(first best)`` once a layout exists.
+    deadline moves to ``measured_end(first best)`` once a layout exists;
+    ``tail`` samples the machine's load meanwhile (:meth:`Tail.note_load`).
+    On a machine with fewer free cores than workers (:func:`_busy`) the
+    workers other than 0 wait for the first layout (at most ``_WAIT_FIRST``
+    of the search): worker 0's quick first fill gets the cores first
+    (Baldacci Test10 at load ~2 on 2 cores: its 2 s CPU took 4 s wall next
+    to worker 1).
     Returns the evaluations the workers reported."""
     t_end, latest = ends
     with _closable_stdin():
         ctx = mp.get_context("fork") if "fork" in mp.get_all_start_methods() else mp.get_context()
         queue = ctx.Queue()
         stop_event = ctx.Event()
+        first = ctx.Event()
+        now = time.monotonic()
+        wait = (first, now + _WAIT_FIRST * (latest - now)) if _busy(n) else None
         procs = [ctx.Process(target=worker_main, daemon=True,
                              args=(problem, copies, seed, i, latest,
                                    fill_limits[0] if i == 0 else fill_limits[1],
-                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3]))
+                                   max_eval, queue, stop_event, fill_limits[2], fill_limits[3],
+                                   wait if i > 0 else None))
                  for i in range(n)]
         for p in procs:
             p.start()
@@ -389,7 +408,9 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
                 _drain(queue, best, done, errors, timeout=0.05)
                 best.publish()              # shown first, then the tail measured on it
                 report(progress, frac(), best.message())
+                tail.note_load(1 + sum(p.is_alive() for p in procs))
                 if best.best is not None:
+                    first.set()
                     t_end = measured_end(best.best)
                 if stop is not None and stop() and best.best is not None:
                     stop_event.set()
@@ -415,6 +436,14 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
     if best.best is None:
         raise LeatherCutError("nesting workers failed: " + ("; ".join(errors) or "no layout"))
     return sum(max(done.get(i, 0), best.evals.get(i, 0)) for i in range(n))
+
+
+def _busy(n_workers: int) -> bool:
+    """Would ``n_workers`` busy processes and the tasks running now (this one
+    left out) be more than the cores?  (False when unknown.)"""
+    from .tail import _cores
+    running = runnable()
+    return running is not None and running - 1 + n_workers > _cores()
 
 
 def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout: float) -> None:

@@ -31,7 +31,9 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import List, Optional, Sequence, Tuple
 
+import numpy as np
 import pyclipper
+import shapely
 from shapely.geometry import Polygon
 
 from .convex import convex_pieces
@@ -45,37 +47,62 @@ HIDE_SIMPLIFY = 0.002
 _MIN_VERTICES = 16
 
 
+def _supersets(rings: Sequence[IntPath], ds: Sequence[float]) -> List[IntPath]:
+    """Per ring a CCW grid ring containing it: grown by its ``d`` grid units
+    (mitred, bevelled beyond 2 d), simplified within 0.9 ``d``; the ring
+    itself when that does not save vertices or the rounded result does not
+    cover it (a simplification that cut a corner).  shapely's array
+    functions, one call per step for all rings: a Polygon per ring cost
+    0.35 s of preparing Baldacci Test10's 204 orientations."""
+    if not rings:
+        return []
+    coords = np.concatenate([np.asarray(r, dtype=float) for r in rings])
+    index = np.repeat(np.arange(len(rings)), [len(r) for r in rings])
+    polys = shapely.polygons(shapely.linearrings(coords, indices=index))
+    d = np.asarray(ds, dtype=float)
+    grown = shapely.simplify(shapely.buffer(polys, d, quad_segs=4, join_style="mitre",
+                                            mitre_limit=2.0), 0.9 * d)
+    candidates: List[Optional[IntPath]] = []
+    for ring, g in zip(rings, grown):
+        ring_out = None
+        if g is not None and not g.is_empty and g.geom_type == "Polygon":
+            ring_out = np.rint(shapely.get_coordinates(g.exterior)[:-1]).astype(np.int64).tolist()
+        candidates.append(ring_out if ring_out is not None and 3 <= len(ring_out) < len(ring)
+                          else None)
+    sel = [i for i, c in enumerate(candidates) if c is not None]
+    if sel:
+        cand = np.array([shapely.polygons(candidates[i]) for i in sel], dtype=object)
+        for i, ok in zip(sel, shapely.covers(cand, polys[sel])):
+            if not ok:
+                candidates[i] = None
+    return [ring if c is None else (c if pyclipper.Orientation(c) else c[::-1])
+            for ring, c in zip(rings, candidates)]
+
+
 def _superset(ring: IntPath, d: float) -> IntPath:
-    """A CCW grid ring containing ``ring``: grown by ``d`` grid units (mitred,
-    bevelled beyond 2 d), simplified within 0.9 ``d``; ``ring`` itself when
-    that does not save vertices."""
-    g = Polygon(ring).buffer(d, 4, join_style=2, mitre_limit=2.0).simplify(0.9 * d)
-    if g.is_empty or g.geom_type != "Polygon":
-        return ring
-    out = [[int(round(x)), int(round(y))] for x, y in list(g.exterior.coords)[:-1]]
-    if not 3 <= len(out) < len(ring) or not Polygon(out).covers(Polygon(ring)):
-        return ring                      # (a simplification that cut a corner: keep exact)
-    return out if pyclipper.Orientation(out) else out[::-1]
+    """:func:`_supersets` of one ring."""
+    return _supersets([ring], [d])[0]
 
 
 def simplify_for_hides(variants: Sequence[Variant], frac: float = HIDE_SIMPLIFY) -> List[Variant]:
     """Variants whose ``outer`` / ``core`` are replaced by simplified rings that
     contain them (see module doc); bbox and hulls follow."""
-    out: List[Variant] = []
-    for v in variants:
-        if len(v.outer) <= _MIN_VERTICES:
-            out.append(v)
-            continue
-        d = frac * max(v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1])
-        if d < 8:                        # grid units: too small a part to gain anything
-            out.append(v)
-            continue
-        outer = _superset(v.outer, d)
-        core = _superset(v.core, d)
+    # (up to _MIN_VERTICES vertices or under 8 grid units of growth: too small
+    # a part to gain anything)
+    grow = {i: frac * max(v.bbox[2] - v.bbox[0], v.bbox[3] - v.bbox[1])
+            for i, v in enumerate(variants)}
+    todo = [i for i, v in enumerate(variants) if len(v.outer) > _MIN_VERTICES and grow[i] >= 8]
+    ds = [grow[i] for i in todo]
+    rings = _supersets([variants[i].outer for i in todo] + [variants[i].core for i in todo],
+                       ds + ds)
+    out: List[Variant] = list(variants)
+    for k, i in enumerate(todo):
+        outer, core = rings[k], rings[len(todo) + k]
         xs = [p[0] for p in outer]
         ys = [p[1] for p in outer]
-        out.append(replace(v, outer=outer, core=core, bbox=(min(xs), min(ys), max(xs), max(ys)),
-                           hull=convex_hull(outer), core_hull=convex_hull(core)))
+        out[i] = replace(variants[i], outer=outer, core=core,
+                         bbox=(min(xs), min(ys), max(xs), max(ys)),
+                         hull=convex_hull(outer), core_hull=convex_hull(core))
     return out
 
 

@@ -497,11 +497,17 @@ def search(problem: Problem, copies: List[int], seed: int, worker: int, budget: 
 
 def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_end: float,
                 first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
-                hard_stop: float = math.inf, give_up_at: float = math.inf) -> None:
+                hard_stop: float = math.inf, give_up_at: float = math.inf,
+                wait_first: Optional[Tuple[object, float]] = None) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
     ("best", worker, cost, order, placements), every 10 evaluations
     ("evals", worker, count); the end as ("done", worker, evaluations) or
-    ("error", worker, message).  ``stop_event`` set = stop now."""
+    ("error", worker, message).  ``stop_event`` set = stop now.
+    ``wait_first`` = (event, time): start only once the event is set (the
+    first layout exists) or the time passed."""
+    if wait_first is not None:
+        event, until = wait_first
+        event.wait(max(0.0, until - time.monotonic()))
     def on_best(cost, order, placements):
         queue.put(("best", worker, cost, order, placements))
 

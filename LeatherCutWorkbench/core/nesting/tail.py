@@ -7,18 +7,30 @@ it must fit in the budget (T + 10 % + 1 s promised), so the search ends
 :meth:`Tail.reserve` seconds before ``started + T``:
 
 * the build and the check are timed the first time they run (the engine does
-  both on its first layout while the search goes on) and kept ``FACTOR``
-  times, scaled to the number of copies; before that, an estimate per copy.
-  Timed while ``busy`` worker processes search, they take longer than they
-  will at the end, when the workers have stopped: with wall / CPU = r
-  measured on ``cores`` cores, the wall kept is the CPU time times
-  max(1, r - busy / cores) -- the share of a core the search's own
-  processes took away is given back, what other programs take is kept
-  (Baldacci Test10 at load ~6: 1.8 s measured, 0.3-0.7 s at the end);
+  both on its first layout while the search goes on) and their CPU time is
+  kept ``FACTOR`` times, scaled to the number of copies; before that, an
+  estimate per copy;
+* their wall time at the end is that CPU time times the contention expected
+  once the search's own processes have stopped.  Measured: the engine samples
+  the machine's runnable tasks (:func:`runnable`, Linux ``/proc/loadavg``)
+  while it searches; those that are not its own (the parent and its busy
+  workers) are other programs, and the tail, one process, then gets a share
+  max(1, (1 + others) / cores) -- before the build and check are timed at
+  least ``PRIOR_CONTENTION`` (the engine samples once before its deadlines:
+  a visibly loaded machine moves the first fill's last resort earlier;
+  Baldacci Test10 with 4 extra busy processes ended 0.06 s inside the limit
+  with the prior alone).  Without samples: the wall / CPU ratio r of
+  the timed build and check less the search's share, max(1, r - busy /
+  cores), which counts the workers' sharing and every other program's as if
+  they had been running all along -- on Baldacci hides at T = 60 the
+  searches ended 7-10 s before T + 10 % + 1 s with a 1-2 s real tail;
 * the outputs the caller declared with :func:`writing` cost a CPU time per
-  file and per written vertex (measured, ``OUTPUT_CPU_S``) times the same
-  wall / CPU ratio expected at the end (``PRIOR_CONTENTION`` until the build
-  and check are timed), plus ``EXIT_S``.
+  file and per written vertex (measured, ``OUTPUT_CPU_S``), plus importing
+  the library that writes them when it is not imported yet
+  (``OUTPUT_IMPORT``; the engine's parent imports it while the workers
+  search, :meth:`Tail.preload`, so the DXF then costs the document only),
+  times the same contention (``PRIOR_CONTENTION``
+  until measured), plus ``EXIT_S``.
 
 :meth:`Tail.check` remembers its verdicts: the same layout under the same
 options is checked once (the strip phase checks its result, :func:`nest`
@@ -34,6 +46,7 @@ from __future__ import annotations
 import contextvars
 import math
 import os
+import sys
 import time
 from contextlib import contextmanager
 from typing import Dict, Iterator, List, Optional, Sequence, Tuple
@@ -43,9 +56,9 @@ from ..model import Layout, Part
 from .checker import check_layout
 from .options import NestOptions
 
-#: the measured build + check cost (corrected for the busy workers, see the
-#: module doc) is kept this many times
-FACTOR = 1.0
+#: the measured build + check cost (its CPU time at the expected contention,
+#: see the module doc) and the outputs' are kept this many times
+FACTOR = 1.25
 #: build + check seconds per copy assumed until measured, sheets and strips
 #: (measured: DXF parts ~0.4 ms -- GMX, 150 copies, 0.06 s)
 PRIOR_PER_COPY_S = {"sheet": 0.001, "strip": 0.001}
@@ -61,13 +74,25 @@ PRIOR_HIDE_CPU_S = (0.2e-3, 0.06e-6)
 PRIOR_HIDE_MAX_S = 0.015
 #: the report and the process exit (the CLI ends with ``os._exit``)
 EXIT_S = 0.15
-#: CPU seconds of each output: (per file -- importing ezdxf, the document --,
-#: per written vertex of the placed outlines and the containers), measured on
-#: Baldacci Test1 / Test10 layouts (1,400 / 17,000 vertices; DXF one LWPOLYLINE
-#: per contour: 0.22 / 0.49 s; layout JSON 0.12 / 0.19 s; SVG 0.004 s / -)
-OUTPUT_CPU_S = {"dxf": (0.25, 0.015e-3), "layout": (0.12, 0.012e-3), "svg": (0.02, 0.005e-3)}
+#: CPU seconds of each output: (per file -- the document --, per written vertex
+#: of the placed outlines and the containers), measured with the writer's
+#: library imported on Baldacci Test2 / Test10 layouts (2,800 / 17,000
+#: vertices; DXF one LWPOLYLINE per contour: 0.07 / 0.44 s; layout JSON
+#: 0.02 / 0.15 s; a one-part layout: DXF 0.008 s, JSON 0.001 s, SVG 0.001 s)
+OUTPUT_CPU_S = {"dxf": (0.03, 0.025e-3), "layout": (0.01, 0.012e-3), "svg": (0.01, 0.005e-3)}
+#: outputs whose writer imports a library first: (module, CPU seconds to import it)
+OUTPUT_IMPORT = {"dxf": ("ezdxf", 0.27)}
+#: CPU seconds per file the first fill's last resort keeps free (:meth:`Tail.files_s`:
+#: importing the writer's library and opening the document, cold caches, as
+#: measured before the output cost was split by what is already imported)
+FILE_WORST_CPU_S = {"dxf": 0.25, "layout": 0.12, "svg": 0.02}
 #: wall / CPU of the tail assumed until measured (a loaded 2-core machine)
 PRIOR_CONTENTION = 2.5
+#: weight of a new runnable-task sample in the running mean of other
+#: programs' tasks (the engine samples every ~50 ms: about 2.5 s of memory)
+LOAD_WEIGHT = 0.02
+#: at least this many seconds between two samples
+LOAD_EVERY_S = 0.05
 
 _CURRENT: contextvars.ContextVar[Optional["Tail"]] = contextvars.ContextVar("nest_tail", default=None)
 _OUTPUTS: contextvars.ContextVar[Tuple[str, ...]] = contextvars.ContextVar("nest_outputs", default=())
@@ -88,6 +113,9 @@ class Tail:
         self.busy = 0
         #: wall / CPU expected for the tail once the search has stopped
         self.contention = PRIOR_CONTENTION
+        #: running mean of other programs' runnable tasks (None: not sampled)
+        self.others: Optional[float] = None
+        self._sampled_at = -math.inf
         self._build: Optional[Tuple[float, float]] = None     # (wall, CPU) s per copy
         self._check: Optional[Tuple[float, float]] = None
         self._memo: Dict[tuple, List[str]] = {}
@@ -124,14 +152,35 @@ class Tail:
             self._check = (seconds / copies, (seconds if cpu is None else cpu) / copies)
             self._update()
 
+    def note_load(self, ours: int) -> None:
+        """Sample the machine's runnable tasks while ``ours`` of them are this
+        nest's (the calling process and its busy workers); at most every
+        ``LOAD_EVERY_S``.  Updates the expected contention (module doc)."""
+        now = time.monotonic()
+        if now - self._sampled_at < LOAD_EVERY_S:
+            return
+        self._sampled_at = now
+        n = runnable()
+        if n is None:
+            return
+        other = max(0.0, float(n - ours))
+        self.others = other if self.others is None else self.others + LOAD_WEIGHT * (other - self.others)
+        self._update()
+
     def _update(self) -> None:
         known = [c for c in (self._build, self._check) if c is not None]
         wall = sum(w for w, _c in known)
         cpu = sum(c for _w, c in known)
+        if self.others is not None:
+            self.contention = max(1.0, (1.0 + self.others) / _cores())
+            if not known:               # before the first layout: the prior is a floor
+                self.contention = max(self.contention, PRIOR_CONTENTION)
+        elif cpu > 0:
+            self.contention = max(1.0, wall / cpu - self.busy / _cores())
+        if not known:
+            return
         if cpu > 0:
-            r = wall / cpu
-            self.contention = max(1.0, r - self.busy / _cores())
-            wall = min(wall, cpu * self.contention)
+            wall = cpu * self.contention
         # one of the two measured: the other assumed alike
         self.per_copy = wall * (2.0 / len(known))
 
@@ -139,16 +188,17 @@ class Tail:
         """Seconds to keep free after the search for a nest of ``copies``
         that still builds and checks its layout ``rounds`` times (and writes
         the declared outputs, unless ``outputs`` is False)."""
-        per = self.per_copy if self.per_copy is not None else self._prior
-        out = self.contention * self._output_cpu_s(copies) if outputs else 0.0
-        return EXIT_S + FACTOR * per * copies * rounds + out
+        per = FACTOR * self.per_copy if self.per_copy is not None else self._prior
+        out = FACTOR * self.contention * self._output_cpu_s(copies) if outputs else 0.0
+        return EXIT_S + per * copies * rounds + out
 
     def files_s(self) -> float:
         """Seconds of the declared outputs whatever the layout (opening each
         file: importing ezdxf, the document), at the expected wall / CPU
         (Baldacci Test1 at load ~9: a first fill given up with its last resort
-        end kept free for the build and check only ended 0.8 s past T + 10 % + 1 s)."""
-        return self.contention * sum(OUTPUT_CPU_S[k][0] for k in self.outputs if k in OUTPUT_CPU_S)
+        end kept free for the build and check only ended 0.8 s past T + 10 % + 1 s;
+        the worst case ``FILE_WORST_CPU_S``, whatever is imported)."""
+        return self.contention * sum(FILE_WORST_CPU_S.get(k, 0.0) for k in self.outputs)
 
     def _output_cpu_s(self, copies: int) -> float:
         """CPU seconds of the declared outputs of ``copies`` average copies and
@@ -159,7 +209,16 @@ class Tail:
             return 0.0
         share = min(copies, n) / n
         vertices = self._copy_vertices * min(copies, n) + share * self._container_vertices
-        return sum(fixed + rate * vertices for fixed, rate in costs)
+        imports = {OUTPUT_IMPORT[k] for k in self.outputs if k in OUTPUT_IMPORT}
+        return (sum(fixed + rate * vertices for fixed, rate in costs)
+                + sum(cpu for module, cpu in imports if module not in sys.modules))
+
+    def preload(self) -> None:
+        """Import the declared outputs' writer libraries now (the engine's parent
+        does it while its workers search), so the tail no longer pays for it."""
+        import importlib
+        for module, _cpu in {OUTPUT_IMPORT[k] for k in self.outputs if k in OUTPUT_IMPORT}:
+            importlib.import_module(module)
 
     def promised_end(self) -> float:
         """``started`` + T + 10 % + 1 s of the whole nest (inf without a budget)."""
@@ -182,6 +241,16 @@ class Tail:
         self.note_check(time.monotonic() - t, len(layout.placements), time.thread_time() - c)
         self._memo[key] = list(problems)
         return problems
+
+
+def runnable() -> Optional[int]:
+    """Tasks running or ready to run on the whole machine now, the caller
+    included (Linux: ``/proc/loadavg``'s fourth field); None elsewhere."""
+    try:
+        with open("/proc/loadavg", encoding="ascii") as fh:
+            return int(fh.read().split()[3].split("/")[0])
+    except (OSError, ValueError, IndexError):
+        return None
 
 
 def _cores() -> int:
