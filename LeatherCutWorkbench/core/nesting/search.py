@@ -385,17 +385,19 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             if c <= cur_cost or c <= h:
                 cur_cost, cur_seq, cur_pl, cur_hides = c, new_seq, new_pl, new_hides
                 if c < best[0]:
+                    if c[:3] < best[0][:3]:      # area left out, hides, their net area
+                        last_gain = time.monotonic()
                     best, best_hides = (c, new_seq, new_pl), new_hides
                     budget.improved(c, new_seq, _out(new_pl.placements, new_hides))
-                    last_gain = time.monotonic()
         if cur_cost < h:
             hist[slot] = cur_cost
     return best[0], best[1], _out(best[2].placements, best_hides), evals
 
 
 #: the order search (even workers, hides) hands over to the copy-to-hide search
-#: when its best layout places every copy and has not improved for this share
-#: of the time since the search began, with at least ``HANDOVER_MIN_S`` left
+#: when its best layout places every copy and has not improved in area left
+#: out, hides or their net area (tie-breaks do not count) for this share of
+#: the time since the search began, with at least ``HANDOVER_MIN_S`` left
 STALL_SHARE = 0.15
 HANDOVER_MIN_S = 8.0
 
