@@ -100,3 +100,52 @@ def test_odd_worker_searches_the_smallest_hides_right_after_its_first_fill():
     lay = _to_layout(parts, types, variants, order, placements, opts, scale, hides)
     assert check_layout(parts, lay, rotations_override=ANGLES) == []
     assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1
+
+
+def test_order_search_worker_hands_over_once_it_stalls_on_a_complete_layout():
+    """Worker 0 on hides: its order search places every copy on one hide and
+    then finds nothing better; it hands over to the copy-to-hide search on
+    that hide (which finds no smaller set and ends) instead of repeating
+    fills until the deadline -- the layout stays on the smallest hide and
+    passes the checker."""
+    from LeatherCutWorkbench.core.nesting import search
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.8, 0.7, 0.75])
+    calls = []
+    real = search._assign_hides
+
+    def spy(*args):
+        calls.append(args[-1])                     # the hides it searches
+        return real(*args)
+    search._assign_hides = spy
+    try:
+        t0 = time.monotonic()
+        budget = search.Budget(t0 + 40.0)
+        cost, order, placements, evals = search.run_search(problem, copies, 1, 0, budget)
+    finally:
+        search._assign_hides = real
+    assert calls == [[1]]                          # handed over on the smallest hide
+    assert time.monotonic() < budget.t_end         # and ended there, before the deadline
+    assert {b for (_si, b, _v, _x, _y) in placements} == {1} and cost[0] == 0
+    lay = _to_layout(parts, types, variants, order, placements, opts, scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1
+
+
+def test_copy_to_hide_worker_starts_on_the_fewest_loosely_filled_smallest_hides():
+    """Baldacci Test6 (43 copies, 380.0 M units^2, 15 hides): the copies fill
+    46.5 % of the 14 smallest hides and 50.6 % of the 13 smallest, so the
+    copy-to-hide worker starts on at most 14 hides (its quick first fill used
+    all 15)."""
+    from LeatherCutWorkbench.core.nesting.search import LOOSE_FILL, _fewest_loose
+    inst = read_esicup(os.path.join(os.path.dirname(__file__), "..", "bench", "data", "hides",
+                                    "Test6.json"))
+    full = inst.hides[0].base_grade
+    parts = [replace(p, grade=full, grade_regions=[]) for p in inst.parts]
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=60, workers=1,
+                       rotations_override=[0.0])
+    _types, _variants, problem, copies, _h, _s = prepare(parts, opts)
+    items = sum(problem.type_area[c] for c in copies)
+    net = sorted(problem.hide_net)
+    k = _fewest_loose(problem.hide_net, items)
+    assert k == 14
+    assert items <= LOOSE_FILL * sum(net[:k]) and items > LOOSE_FILL * sum(net[:k - 1])

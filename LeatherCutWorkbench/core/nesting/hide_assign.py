@@ -7,7 +7,8 @@ large parts (Baldacci Test2: 34 car-seat parts, five on a hide) it ends
 with one poorly filled hide and a hide set larger than needed.
 
 Here the hide set is fixed -- first the k smallest hides, k the hides the
-worker's first fill used (:func:`search._assign_hides`) -- and each hide has
+worker's first fill used (:func:`search._assign_hides`), or on the order-search
+worker the hides of its best layout once that search stalled -- and each hide has
 its own sequence of copies, filled on its own by the bottom-left fill; a
 copy that does not fit its hide is then tried, in turn, at the end of the
 other hides' sequences (first fit across the set, :meth:`AssignmentSearch._spill`)

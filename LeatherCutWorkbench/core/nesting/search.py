@@ -19,6 +19,13 @@ Strips are searched by shrinking (:func:`run_strip_search`): the strip is
 closed a little shorter than the best layout and the order is searched until
 every piece fits again.
 
+Hides: odd workers run the copy-to-hide search (:mod:`hide_assign`) right
+after a quick first fill; even workers run the order search and hand over to
+the copy-to-hide search on their own best set once that search has stalled
+on a layout that places every copy (:func:`_stalled`; Baldacci Test6 at 60 s:
+the order search finds 13 hides / 782 M units^2 by 12 s and nothing better
+after, the hand-over steps that set down to 13 hides of 751-767 M or 12).
+
 Each worker process runs its own search with its own random stream (derived
 from the seed and the worker index i) and start order; the best result wins, ties going to the lowest worker index.
 With ``max_evaluations`` each worker stops after exactly that many layouts,
@@ -306,6 +313,7 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     if assign:
         if not budget.done(evals):
             k = len(used_positions(cur_pl.placements))
+            k = min(k, _fewest_loose(problem.hide_net, sum(problem.type_area[c] for c in copies)))
             seed_hides = tight_order(problem.hide_net, k)[:k]
             best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
                                                     best_hides, evals, seed_hides)
@@ -336,8 +344,19 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
                         budget.improved(c, cur_seq, _out(tr.placements, order))
     hist = [cur_cost] * history
     step = 0
+    t_start = last_gain = time.monotonic()
     while (len(copies) > 1 or choose_hides) and not budget.done(evals):
         budget.check_cancel(evals, best[0])
+        if choose_hides and _stalled(t_start, last_gain, budget.t_end, best[0]):
+            # the order search has stalled on a complete layout: step its hide
+            # set down with the copy-to-hide search (module doc of hide_assign),
+            # with exact inner-fit regions as the odd workers; its fills keep
+            # this worker's four orientations (cheaper, and unlike worker 1's)
+            placer.concave_fit = True
+            used = [best_hides[p] for p in used_positions(best[2].placements)]
+            best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
+                                                    best_hides, evals, used)
+            break
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
             new_hides, pos = swap_hides(rng, cur_hides, cur_pl.placements, problem.hide_net,
@@ -366,6 +385,8 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             if c <= cur_cost or c <= h:
                 cur_cost, cur_seq, cur_pl, cur_hides = c, new_seq, new_pl, new_hides
                 if c < best[0]:
+                    if c[:3] < best[0][:3]:      # area left out, hides, their net area
+                        last_gain = time.monotonic()
                     best, best_hides = (c, new_seq, new_pl), new_hides
                     budget.improved(c, new_seq, _out(new_pl.placements, new_hides))
         if cur_cost < h:
@@ -373,11 +394,44 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     return best[0], best[1], _out(best[2].placements, best_hides), evals
 
 
+#: the order search (even workers, hides) hands over to the copy-to-hide search
+#: when its best layout places every copy and has not improved in area left
+#: out, hides or their net area (tie-breaks do not count) for this share of
+#: the time since the search began, with at least ``HANDOVER_MIN_S`` left
+STALL_SHARE = 0.15
+HANDOVER_MIN_S = 8.0
+
+
+#: the copy-to-hide worker starts on at most the fewest smallest hides the
+#: copies fill at most this share of (its quick first fill may use more)
+LOOSE_FILL = 0.5
+
+
+def _fewest_loose(net: Sequence[float], item_area: float) -> int:
+    """The fewest k such that the copies fill at most ``LOOSE_FILL`` of the
+    k smallest hides' net area (all hides when none does)."""
+    total = 0.0
+    for k, a in enumerate(sorted(net), 1):
+        total += a
+        if item_area <= LOOSE_FILL * total:
+            return k
+    return len(net)
+
+
+def _stalled(t_start: float, last_gain: float, t_end: float, best_cost: Cost) -> bool:
+    """True when the order search should hand over (see ``STALL_SHARE``)."""
+    now = time.monotonic()
+    return best_cost[0] == 0 and t_end - now >= HANDOVER_MIN_S and \
+        now - last_gain >= STALL_SHARE * (t_end - t_start)
+
+
 def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: Budget,
                   best, best_hides: List[int], evals: int, hides: List[int]):
-    """Hides, odd workers right after a quick first fill: the copy-to-hide
-    search of :mod:`hide_assign` on ``hides`` -- the k smallest, k the hides
-    the first fill used: the best utilisation k hides can give; the search may
+    """Hides, odd workers right after a quick first fill (even workers once
+    their order search stalled, on the hides of their best layout): the
+    copy-to-hide search of :mod:`hide_assign` on ``hides`` -- the k smallest,
+    k the hides the first fill used (at most :func:`_fewest_loose`): the best
+    utilisation k hides can give; the search may
     swap in hides up to 5 % more net area while copies are left over -- until
     the deadline.  The even workers' order search meanwhile finds complete
     sets from the largest hides down (on Test2 and Test10 the odd worker's own
@@ -390,6 +444,7 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
     item_area = sum(problem.type_area[g[0]] for g in best[1])
     genes = from_layout(best[2].placements, best[1], best_hides, hides, problem.type_area, net)
     holder = [best, best_hides]
+    every = sorted(g[0] for g in best[1])
 
     def expired() -> bool:
         budget.check_cancel(evals + s.evals, holder[0][0])
@@ -397,6 +452,10 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
 
     def on_better(state) -> None:
         seq, placements, order = as_layout(state)
+        if len(placements) != len(every) or sorted(g[0] for g in seq) != every:
+            # a state that lost a copy would count as complete (cost_of counts
+            # only the copies left out); a 2-worker Test6 run reported 42/43
+            return
         c = cost_of(problem, seq, placements, order)
         if c < holder[0][0]:
             holder[0], holder[1] = (c, seq, Trace(placements, [])), order
