@@ -285,6 +285,14 @@ def test_engine_search_ends_at_its_plateau():
     assert user.stop()                            # the user's Stop always counts
 
 
+def _exploring(lay, parts, opts):
+    """(instance, separator, shared best) of the strip phase started from ``lay``."""
+    inst = _Instance(lay, parts, opts)
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
+                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
+    return inst, sep, _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+
+
 def test_exploration_retries_from_its_own_failed_layout_inside_the_strip():
     """Exploration (sparrow's): after a failed separation the worker does not
     go back to the best valid layout; its next try starts from the layout that
@@ -292,10 +300,7 @@ def test_exploration_retries_from_its_own_failed_layout_inside_the_strip():
     the best and inside the strip.  Every layout it keeps passes the checker."""
     parts, opts = _fu()
     lay = nest(parts, opts)
-    inst = _Instance(lay, parts, opts)
-    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
-                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
-    shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+    inst, sep, shared = _exploring(lay, parts, opts)
     calls = []
     real = sep.separate
 
@@ -337,10 +342,7 @@ def test_exploration_keeps_its_target_and_a_retry_from_the_pool_separates_on_alb
     opts = NestOptions(container=ContainerSpec.strip(inst0.strip_height), time_budget=0.5,
                        max_evaluations=8, seed=1, workers=1)
     lay = nest(parts, opts)
-    inst = _Instance(lay, parts, opts)
-    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0,
-                    inst.y1, inst.x0, inst.eps, pad=inst.pad)
-    shared = _Best((inst.right_edge(inst.X, inst.V), inst.X, inst.Y, inst.V))
+    inst, sep, shared = _exploring(lay, parts, opts)
     calls = []
     real = sep.separate
 
