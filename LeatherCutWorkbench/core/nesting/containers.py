@@ -184,14 +184,16 @@ def polygons_of(g: BaseGeometry) -> List[Polygon]:
 
 def shrink_for_margin(c: Container, grade: int, margin: float, simplify: float = 0.25,
                       pieces: Optional[List[Tuple[int, BaseGeometry]]] = None,
+                      usable: Optional[BaseGeometry] = None,
                       ) -> Tuple[List[List[Point]], List[List[Point]], Optional[BaseGeometry]]:
     """The hide region for ``grade`` as (outer rings, obstacle rings) in mm for
     the parts' true shapes: the material shrunk by ``margin`` from the outline
     and the defects (zone borders need no margin), then simplified to fewer
     vertices inside a ``simplify`` mm band (shrunk first, so it never grows).
-    ``pieces``: as for :func:`usable_region`."""
+    ``pieces``: as for :func:`usable_region`; ``usable``: that region of
+    ``grade`` when the caller has it."""
     outline = Polygon(c.outline)
-    region = usable_region(c, grade, pieces)
+    region = usable if usable is not None else usable_region(c, grade, pieces)
     inner = outline.buffer(-margin, 16) if margin > 0 else outline
     region = region.intersection(inner)
     for d in c.defects:

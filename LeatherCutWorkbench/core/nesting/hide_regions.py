@@ -55,6 +55,8 @@ class HideRegions:
     margin: float
     scale: float
     _pieces: Optional[list] = field(default=None, init=False, repr=False, compare=False)
+    _usable: Dict[int, object] = field(default_factory=dict, init=False, repr=False,
+                                       compare=False)
 
     def keys(self) -> Dict[int, int]:
         """Part grade -> region key: the lowest grade that may use the same
@@ -75,8 +77,16 @@ class HideRegions:
         grade, whose material holds every other grade's; 0 when empty."""
         if not self.grades:
             return 0.0
-        region = usable_region(self.container, min(self.grades), self.pieces())
+        region = self.usable(min(self.grades))
         return region.area * self.scale * self.scale
+
+    def usable(self, key: int):
+        """:func:`containers.usable_region` of grade ``key``, no margins (once
+        per key: ``material``, ``coarse`` and ``exact`` all start from it)."""
+        hit = self._usable.get(key)
+        if hit is None:
+            hit = self._usable[key] = usable_region(self.container, key, self.pieces())
+        return hit
 
     def pieces(self):
         """:func:`containers.zone_pieces` of the hide (once)."""
@@ -101,7 +111,7 @@ class HideRegions:
         fine = _perimeter(c.outline) < 2.5 * tol * len(c.outline)
         edge_tol = max(0.25, 0.05 * tol) if fine else 0.25
         outers, holes, _region = shrink_for_margin(c, key, self.margin, simplify=edge_tol,
-                                                   pieces=self.pieces())
+                                                   usable=self.usable(key))
         return ([to_grid(_arr(o), self.scale) for o in outers],
                 [to_grid(_arr(r), self.scale) for r in holes])
 
@@ -109,7 +119,7 @@ class HideRegions:
         """A subset of the region of grade ``key`` with few vertices
         (:func:`coarse_region` of its material shrunk by the margin, which
         keeps the margin from zone borders too), None when it is empty."""
-        region = usable_region(self.container, key, self.pieces())
+        region = self.usable(key)
         if self.margin > 0 and not region.is_empty:
             region = region.buffer(-self.margin, 16)
         if region.is_empty:
