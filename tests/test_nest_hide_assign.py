@@ -149,3 +149,24 @@ def test_copy_to_hide_worker_starts_on_the_fewest_loosely_filled_smallest_hides(
     k = _fewest_loose(problem.hide_net, items)
     assert k == 14
     assert items <= LOOSE_FILL * sum(net[:k]) and items > LOOSE_FILL * sum(net[:k - 1])
+
+
+def test_worker_0_first_layout_turns_each_part_one_way_then_fills_with_four():
+    """Worker 0 on hides answers first with one orientation per part
+    (``FIRST_CAP_HIDES``: a quarter of the inner-fit regions), a valid
+    layout; its next fill tries four orientations and is kept only when
+    better, so the layouts it reports improve."""
+    from LeatherCutWorkbench.core.nesting.search import Budget, run_search
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.8, 0.7, 0.75])
+    seen = []
+    budget = Budget(time.monotonic() + 120.0, max_evaluations=2,
+                    on_best=lambda c, order, pl: seen.append((c, order, pl)))
+    run_search(problem, copies, 1, 0, budget)
+    one_way = {problem.type_variants[t][0] for t in range(len(types))}
+    _cost, order, first = seen[0]
+    assert {vi for (_si, b, vi, _x, _y) in first if b >= 0} <= one_way
+    lay = _to_layout(parts, types, variants, order, first, opts, scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert [c for c, _o, _p in seen] == sorted((c for c, _o, _p in seen), reverse=True)
+    if len(seen) > 1:                     # the four-orientation fill was better
+        assert not {vi for (_si, b, vi, _x, _y) in seen[1][2] if b >= 0} <= one_way

@@ -223,12 +223,20 @@ class Budget:
             self.on_best(cost, list(order), list(placements))
 
 
+#: hides: worker 0's very first fill tries this many orientations per copy (its
+#: next fills, coarse then exact, try four): one inner-fit region per hide and part instead
+#: of four -- Baldacci Test9 (11 copies that fit no hide try every hide) 896 coarse
+#: inner-fit regions and 1.45 s on one core, 225 and 0.48 s so
+FIRST_CAP_HIDES = 1
+
+
 def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker: int,
                  budget: Budget, quick: bool = False):
     """The worker's first layout (its own start order, never abandoned), then
     the other start orders while they are cheap; returns (cost, order, trace, evals).
     ``quick`` (always on worker 0): the first fill tries four orientations only
-    (and, with ``quick``, the other start orders too)."""
+    (worker 0 on hides: ``FIRST_CAP_HIDES``; and, with ``quick``, the other
+    start orders too)."""
     starts = start_orders(problem, copies)
     k = worker % len(starts)
     starts = starts[k:] + starts[:k]
@@ -239,26 +247,28 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     placer.clock.stop = budget.stop
     placer.clock.exact_until = budget.first_fill_until
     # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
-    tr = placer.place(starts[0], abortable=False,
-                      variant_cap=4 if worker == 0 or quick else None)
+    # (hides: one, see ``FIRST_CAP_HIDES``)
+    cap = None
+    if worker == 0 or quick:
+        cap = FIRST_CAP_HIDES if worker == 0 and problem.hide_net is not None else 4
+    tr = placer.place(starts[0], abortable=False, variant_cap=cap)
+    hides = placer.bin_order
+    best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
+    budget.improved(best[0], best[1], _out(tr.placements, hides))
+    evals = 1
+    if cap is not None and cap < 4 and not budget.done(evals):
+        # the four-orientation fill (coarse once ``first_fill_until`` passed): at
+        # T = 10 s often the best layout worker 0 has before the deadline
+        best, evals = _better(problem, placer, budget, best, starts[0], evals, 4)
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly
     # (hides: exact always -- a coarse layout of concave leather parts wastes hides)
     if worker != 0 or placer.nfps.mean_exact_s() < 0.005 or problem.hide_net is not None:
         placer.clock.exact_until = math.inf
-    hides = placer.bin_order
-    best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
-    budget.improved(best[0], best[1], _out(tr.placements, hides))
-    evals = 1
     if worker == 0 and problem.hide_net is not None and not budget.done(evals):
-        tr = placer.place(starts[0])          # the quick first fill again, exactly
-        evals += 1
-        if tr is not None:
-            c = cost_of(problem, starts[0], tr.placements, hides)
-            if c < best[0]:
-                best = (c, starts[0], tr)
-                budget.improved(c, starts[0], _out(tr.placements, hides))
+        # the quick first fill again, exactly
+        best, evals = _better(problem, placer, budget, best, starts[0], evals, None)
     cheap = (time.monotonic() - t0) < 0.25 * max(budget.t_end - t0, 0.0)
     for order in starts[1:]:
         if not cheap or budget.done(evals):
@@ -275,6 +285,21 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
             best = (c, order, tr)
             budget.improved(c, order, _out(tr.placements, hides))
     return best, evals
+
+
+def _better(problem: Problem, placer: Placer, budget: Budget, best, order: List[Gene],
+            evals: int, cap: Optional[int]):
+    """One more (abortable) fill of ``order`` with at most ``cap`` orientations
+    per copy (None: the placer's default); returns (best, evaluations), the
+    fill's layout reported and kept when it is better."""
+    tr = placer.place(order, variant_cap=cap)
+    if tr is not None:
+        hides = placer.bin_order
+        c = cost_of(problem, order, tr.placements, hides)
+        if c < best[0]:
+            best = (c, order, tr)
+            budget.improved(c, order, _out(tr.placements, hides))
+    return best, evals + 1
 
 
 def _out(placements: Placements, hide_order: Optional[List[int]]) -> Placements:
