@@ -10,7 +10,8 @@ from shapely.ops import unary_union
 
 from LeatherCutWorkbench.core.nesting.checker import part_polygon
 from LeatherCutWorkbench.core.nesting.convex import convex_pieces, edge_form, sum_forms
-from LeatherCutWorkbench.core.nesting.convex_sums import FormSet, sum_all
+from LeatherCutWorkbench.core.nesting import convex_sums
+from LeatherCutWorkbench.core.nesting.convex_sums import FormSet, sum_all, warm_up
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.nfp import _neg, piece_forms, solid_nfp
 from LeatherCutWorkbench.core.nesting.shapes import convex_hull
@@ -31,10 +32,31 @@ def test_batch_sums_equal_the_numpy_sums_vertex_for_vertex():
     sq = [[0, 0], [10, 0], [10, 10], [0, 10]]
     a.append(edge_form(sq))
     b.append(edge_form([[p[0] * 3 + 7, p[1] * 3 - 2] for p in sq]))
+    warm_up()
+    assert convex_sums._kernel is not None
     got = sum_all(FormSet(a), b)
     want = [sum_forms(x, y) for x in a for y in b]
     assert got == want
     assert sum_all(FormSet([]), b) == []
+
+
+def test_sums_before_the_kernel_is_loaded_are_the_kernels(monkeypatch):
+    """Worker 0's first fill on hides runs before :func:`warm_up` (numba not
+    imported yet): its pair-by-pair sums of the convex pieces of the two most
+    concave Test1 parts (one negated, as in a no-fit polygon) are the
+    kernel's rings."""
+    inst = read_esicup(os.path.join(DATA, "Test1_first2hides.json"))
+    rings = []
+    for p in inst.parts:
+        g = part_polygon(p, 0.1)
+        r = [[int(round(x * 10)), int(round(y * 10))] for x, y in g.exterior.coords[:-1]]
+        rings.append(r if Polygon(r).exterior.is_ccw else r[::-1])
+    a, b = sorted(rings, key=lambda r: -len(piece_forms(r)))[:2]
+    forms = [piece_forms(a), piece_forms(b, negate=True)]
+    warm_up()
+    compiled = sum_all(forms[0], forms[1])
+    monkeypatch.setattr(convex_sums, "_kernel", None)
+    assert sum_all(forms[0], forms[1]) == compiled and len(compiled) > 4
 
 
 def test_leather_part_nfp_is_the_exact_minkowski_sum():

@@ -67,3 +67,43 @@ def test_graded_fixture_nests_validly():
     lay = nest(inst.parts, opts)
     assert not lay.unplaced
     assert check_layout(inst.parts, lay) == []
+
+
+def test_whole_grade_fill_keeps_graded_parts_on_their_strictest_grade():
+    """Worker 0's quick first fill (``Placer.whole_grade``) places a part with
+    graded regions as if all of it needed its strictest region's grade: the
+    coarse fill of the Test10 fixture places every copy without the
+    per-position region test, each graded part wholly on material of that
+    grade, and the layout passes the checker."""
+    from LeatherCutWorkbench.core.nesting.containers import usable_region
+    from LeatherCutWorkbench.core.nesting.engine import _to_layout, prepare
+    from LeatherCutWorkbench.core.nesting.checker import part_polygon, placed_polygon
+    from LeatherCutWorkbench.core.nesting.search import start_orders
+    inst = read_esicup(os.path.join(DATA, "Test10_items13_15_hide7.json"))
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=3, workers=1)
+    types, variants, problem, copies, hides, scale = prepare(inst.parts, opts)
+    rc = problem.region_check
+    graded = [t for t in range(len(types)) if rc.applies(t)]
+    assert graded
+    placer = problem.placer()
+    placer.clock.exact_until = -1.0            # coarse, as the quick first fill
+    placer.whole_grade = True
+    calls = []
+    real_ok = rc.ok
+    rc.ok = lambda *a: calls.append(a) or real_ok(*a)
+    try:
+        order = start_orders(problem, copies)[0]
+        tr = placer.place(order, abortable=False)
+    finally:
+        rc.ok = real_ok
+    assert not tr.unplaced and not calls
+    lay = _to_layout(inst.parts, types, variants, order, tr.placements, opts, scale, hides)
+    assert check_layout(inst.parts, lay) == []
+    by_id = {p.id: p for p in inst.parts}
+    for pl in lay.placements:
+        t = next(i for i, ty in enumerate(types) if ty.key == pl.part_id)
+        if t in graded:
+            g = placed_polygon(part_polygon(by_id[pl.part_id], opts.chord_tol), pl.x, pl.y,
+                               pl.angle, pl.mirrored)
+            region = usable_region(hides[0], rc.strictest(t))
+            assert region.buffer(opts.tolerance).contains(g)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, Dict, List, Optional, Tuple
 
-from ..core.dxfimport import ImportOptions, read_drawing
+from ..core.dxfimport import ImportOptions
 from ..core.dxfimport.layers import DEFAULT_NOT_CUT
 from ..core.dxfimport.options import PATTERN_MODES
 from ..core.model import Drawing
@@ -71,6 +71,7 @@ def register(subparsers: Any) -> None:
 
 
 def run(args: argparse.Namespace) -> Report:
+    from ..core.dxfimport import read_drawing
     drawing = read_drawing(args.FILE, options_from_args(args))
     data = inspect_report(drawing)
     return Report(data=data, text=_text(data))

@@ -9,16 +9,23 @@ Test2 a first fill made 209,000 of them (9 of its 15 s in a profile).  The
 kernel here (numba: a plain merge loop, no library does it) makes all the
 sums of two :class:`FormSet` in one call, vertex for vertex the same rings
 as :func:`convex.sum_forms`.
+
+The kernel lives in :mod:`convex_kernel`, loaded by :func:`warm_up`: numba's
+import and its cached machine code cost 0.6-0.9 s, which a worker's first
+fill on hides need not wait for (its coarse inner-fit regions make a few
+thousand sums: Baldacci Test10 4,800, +0.03 s pair by pair).  Until then
+:func:`sum_all` sums pair by pair with numpy -- the same rings.
 """
 
 from __future__ import annotations
 
 from typing import List, Sequence
 
-import numpy as np
-from numba import njit
+from typing import Callable, Optional
 
-from .convex import Form
+import numpy as np
+
+from .convex import Form, sum_forms
 
 IntPath = List[List[int]]
 
@@ -56,54 +63,33 @@ def as_set(forms) -> FormSet:
     return forms if isinstance(forms, FormSet) else FormSet(forms)
 
 
-@njit(cache=True)
-def _sums(ba, ea, aa, oa, bb, eb, ab, ob):  # pragma: no cover - compiled
-    na = len(oa) - 1
-    nb = len(ob) - 1
-    out = np.empty((nb * oa[-1] + na * ob[-1], 2), np.int64)
-    offs = np.empty(na * nb + 1, np.int64)
-    k = 0
-    p = 0
-    for i in range(na):
-        for j in range(nb):
-            offs[p] = k
-            p += 1
-            x = ba[i, 0] + bb[j, 0]
-            y = ba[i, 1] + bb[j, 1]
-            ia, iae, ib, ibe = oa[i], oa[i + 1], ob[j], ob[j + 1]
-            for _s in range((iae - ia) + (ibe - ib)):
-                out[k, 0] = x
-                out[k, 1] = y
-                k += 1
-                # merge by edge angle; ties take A's edge first (a stable sort)
-                if ib >= ibe or (ia < iae and aa[ia] <= ab[ib]):
-                    x += ea[ia, 0]
-                    y += ea[ia, 1]
-                    ia += 1
-                else:
-                    x += eb[ib, 0]
-                    y += eb[ib, 1]
-                    ib += 1
-    offs[p] = k
-    return out, offs
+#: the compiled kernel once :func:`warm_up` loaded it (None: numpy pair by pair)
+_kernel: Optional[Callable] = None
 
 
 def sum_all(a, b) -> List[IntPath]:
     """Minkowski sums of every ring of ``a`` with every ring of ``b`` (edge
     forms or :class:`FormSet`), A-major: ``[a0+b0, a0+b1, ..., a1+b0, ...]``;
-    exact integers, CCW."""
+    exact integers, CCW (the kernel's or, before :func:`warm_up`, numpy's)."""
     sa, sb = as_set(a), as_set(b)
     if not len(sa) or not len(sb):
         return []
-    out, offs = _sums(sa.base, sa.edges, sa.ang, sa.off, sb.base, sb.edges, sb.ang, sb.off)
+    if _kernel is None:
+        return [sum_forms(fa, fb) for fa in sa.forms for fb in sb.forms]
+    out, offs = _kernel(sa.base, sa.edges, sa.ang, sa.off, sb.base, sb.edges, sb.ang, sb.off)
     pts = out.tolist()
     o = offs.tolist()
     return [pts[o[p]:o[p + 1]] for p in range(len(o) - 1)]
 
 
 def warm_up() -> None:
-    """Compile (or load the cached compilation of) the kernel now: called
-    before the worker processes fork, so each of them has it ready."""
+    """Load the kernel (compile it, or load its cached compilation) and run
+    it once; later calls do nothing."""
+    global _kernel
+    if _kernel is not None:
+        return
     from .convex import edge_form
+    from .convex_kernel import pair_sums
+    _kernel = pair_sums
     tri = edge_form([[0, 0], [1, 0], [0, 1]])
     sum_all([tri], [tri])

@@ -200,8 +200,10 @@ def prepare(parts: Sequence[Part], options: NestOptions):
                       region_check=region_check(type_parts, hides, scale, options.tolerance,
                                                 options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
-    if hides or not all(is_convex(v.outer) for v in variants):
-        warm_up()                  # before the workers fork (each would load it again)
+    if not hides and not all(is_convex(v.outer) for v in variants):
+        # before the workers fork (each would load it again); on hides each worker
+        # loads it itself, worker 0 after its first fill (:func:`search._first_fills`)
+        warm_up()
     return types, variants, problem, copies, hides, scale
 
 

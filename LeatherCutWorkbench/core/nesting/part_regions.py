@@ -142,6 +142,10 @@ class RegionCheck:
     def applies(self, t: int) -> bool:
         return t < len(self.types) and self.types[t] is not None
 
+    def strictest(self, t: int) -> int:
+        """The strictest grade type ``t``'s regions need (``applies(t)`` holds)."""
+        return max(g for g, _shape in self.types[t])
+
     def _forbidden(self, b: int, grade: int):
         """Material of hide ``b`` below ``grade`` (shrunk by tol: touching is fine), prepared."""
         key = (b, grade)

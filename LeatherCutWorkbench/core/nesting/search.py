@@ -50,6 +50,7 @@ from dataclasses import dataclass
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinSpec, Placer
+from .convex_sums import warm_up
 from .hide_choice import (as_hide_indices, first_affected, hide_cost, initial_order, swap_hides,
                           tight_order, used_positions)
 from .shapes import Variant
@@ -223,10 +224,11 @@ class Budget:
             self.on_best(cost, list(order), list(placements))
 
 
-#: hides: worker 0's very first fill tries this many orientations per copy (its
-#: next fills, coarse then exact, try four): one inner-fit region per hide and part instead
-#: of four -- Baldacci Test9 (11 copies that fit no hide try every hide) 896 coarse
-#: inner-fit regions and 1.45 s on one core, 225 and 0.48 s so
+#: hides: worker 0's very first fill tries this many orientations per copy,
+#: coarse inner-fit regions only (its next fills, coarse until
+#: ``first_fill_until`` then exact, try four): one inner-fit region per hide and
+#: part instead of four -- Baldacci Test9 (11 copies that fit no hide try every
+#: hide) 896 coarse inner-fit regions and 1.45 s on one core, 225 and 0.48 s so
 FIRST_CAP_HIDES = 1
 
 
@@ -235,9 +237,15 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     """The worker's first layout (its own start order, never abandoned), then
     the other start orders while they are cheap; returns (cost, order, trace, evals).
     ``quick`` (always on worker 0): the first fill tries four orientations only
-    (worker 0 on hides: ``FIRST_CAP_HIDES``; and, with ``quick``, the other
-    start orders too)."""
+    (and, with ``quick``, the other start orders too).  Worker 0 on hides
+    answers first with a coarse fill of ``FIRST_CAP_HIDES`` orientations,
+    parts with graded regions wholly of their strictest grade
+    (:attr:`Placer.whole_grade`), before it loads the sum kernel (:func:`convex_sums.warm_up`: numpy makes
+    the few thousand sums of coarse regions), then fills with four."""
     starts = start_orders(problem, copies)
+    first_hides = worker == 0 and problem.hide_net is not None
+    if not first_hides:
+        warm_up()
     k = worker % len(starts)
     starts = starts[k:] + starts[:k]
     t0 = time.monotonic()
@@ -245,21 +253,26 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     placer.clock.hard_stop = budget.hard_stop
     placer.clock.give_up_at = budget.give_up_at
     placer.clock.stop = budget.stop
-    placer.clock.exact_until = budget.first_fill_until
     # worker 0 answers fast: exact no-fit polygons only briefly, four orientations
-    # (hides: one, see ``FIRST_CAP_HIDES``)
-    cap = None
-    if worker == 0 or quick:
-        cap = FIRST_CAP_HIDES if worker == 0 and problem.hide_net is not None else 4
+    cap = 4 if worker == 0 or quick else None
+    if first_hides:
+        placer.clock.exact_until, cap = -math.inf, FIRST_CAP_HIDES
+        placer.whole_grade = True
+    else:
+        placer.clock.exact_until = budget.first_fill_until
     tr = placer.place(starts[0], abortable=False, variant_cap=cap)
+    placer.whole_grade = False
     hides = placer.bin_order
     best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
     budget.improved(best[0], best[1], _out(tr.placements, hides))
     evals = 1
-    if cap is not None and cap < 4 and not budget.done(evals):
-        # the four-orientation fill (coarse once ``first_fill_until`` passed): at
-        # T = 10 s often the best layout worker 0 has before the deadline
-        best, evals = _better(problem, placer, budget, best, starts[0], evals, 4)
+    if first_hides:
+        warm_up()
+        placer.clock.exact_until = budget.first_fill_until
+        if not budget.done(evals):
+            # the four-orientation fill (coarse once ``first_fill_until`` passed): at
+            # T = 10 s often the best layout worker 0 has before the deadline
+            best, evals = _better(problem, placer, budget, best, starts[0], evals, 4)
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly

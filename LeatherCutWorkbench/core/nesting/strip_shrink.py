@@ -38,7 +38,7 @@ import os
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor, wait
-from typing import Callable, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Callable, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -46,12 +46,23 @@ from ..model import Container, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from . import tail
 from .options import ContainerSpec, NestOptions
-try:                      # numba; without it (e.g. a bare FreeCAD Python) the engine runs alone
-    from .overlap import PairTable
-    from .separation import Separator, colliding_total, seed_rng
-except ImportError:       # pragma: no cover - the project's venv always has numba
-    PairTable = Separator = colliding_total = seed_rng = None  # type: ignore[assignment,misc]
 from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
+
+if TYPE_CHECKING:
+    from .separation import Separator
+
+def _kernels() -> bool:
+    """Can the separation kernels (numba: :mod:`overlap`, :mod:`separation`) be
+    imported?  (Imported here on first use, so a nest on hides never imports
+    numba before its first layout; False e.g. in a bare FreeCAD Python, where
+    the engine runs alone.)"""
+    import importlib
+    try:
+        for name in ("overlap", "separation"):
+            importlib.import_module(f".{name}", __package__)
+    except ImportError:       # pragma: no cover - the project's venv always has numba
+        return False
+    return True
 
 #: the longest container or part dimension spans this many grid units
 GRID_UNITS = 1.0e6
@@ -249,6 +260,7 @@ def _shrink_loop(inst: _Instance, sep: Separator, shared: _Best, deadline: float
     ``COMPRESSION_SHARE`` of the time is left, then compression
     (:func:`_compress`).  Returns its last ``KEEP`` overlap-free layouts
     (x1, X, Y, V), shortest last."""
+    from .separation import seed_rng
     rng = np.random.default_rng(seed)
     seed_rng(seed)
     found: list = []
@@ -267,6 +279,7 @@ def _explore(inst: _Instance, sep: Separator, shared: _Best, until: float, rng, 
     (sparrow's exploration).  On success the layout is the new best and the
     next target lies ``EXPLORE_SHRINK`` of its length below it.  When another
     worker reaches ``x1`` first, this one goes on from that worker's best."""
+    from .separation import colliding_total
     x0 = inst.x0
     best = None
     x1 = X = Y = V = None
@@ -358,13 +371,15 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     ``user_stop()`` returning True (the workbench's *Stop*) ends the phase early
     and keeps the best layout found so far."""
     if options.container.kind != "strip" or layout.unplaced or len(layout.placements) < 2 \
-            or PairTable is None:
+            or not _kernels():
         return layout
     if time.monotonic() > deadline - 0.2 or _problems(parts, layout, options):
         return layout
     inst = _Instance(layout, parts, options)
     if not inst.ok or len(inst.variants) ** 2 > MAX_PAIRS:
         return layout
+    from .overlap import PairTable
+    from .separation import Separator
     table = PairTable(inst.variants, deadline)
     if not table.complete:
         return layout
@@ -443,7 +458,7 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     t0 = options.started_at if options.started_at is not None else time.monotonic()
     kind = options.container.kind
     if kind not in ("strip", "sheet") or options.max_evaluations is not None \
-            or options.time_budget <= 0 or PairTable is None:
+            or options.time_budget <= 0 or not _kernels():
         return run_own(parts, options, progress, on_best, stop)
     share = 1.0 if kind == "sheet" else _search_share(parts)
     # the share splits the time left after reading the drawing (counted from t0)
