@@ -1,6 +1,6 @@
 """Compile the nesting engine's numba kernels once, at set-up (tools/setup.sh).
 
-The kernels (``@njit(cache=True)`` in core/nesting: convex_sums, overlap,
+The kernels (``@njit(cache=True)`` in core/nesting: convex_kernel, overlap,
 separation, hide_separation) compile in ~8 s on their first use after the
 sources changed and are then loaded from numba's disk cache in well under a
 second.  Without this step a user's first nest after ``bash bootstrap.sh``
