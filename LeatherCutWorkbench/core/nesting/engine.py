@@ -25,8 +25,6 @@ from ..progress import ProgressFn, report
 from .blf import BinSpec
 from .checker import part_polygon, placed_polygon
 from .containers import net_area, rectangle
-from .convex_sums import warm_up
-from .nfp import is_convex
 from .hide_regions import HideRegions
 from .hide_shapes import simplify_for_hides
 from .options import NestOptions
@@ -200,10 +198,6 @@ def prepare(parts: Sequence[Part], options: NestOptions):
                       region_check=region_check(type_parts, hides, scale, options.tolerance,
                                                 options.chord_tol))
     copies = [i for i, t in enumerate(types) for _ in range(t.quantity)]
-    if not hides and not all(is_convex(v.outer) for v in variants):
-        # before the workers fork (each would load it again); on hides each worker
-        # loads it itself, worker 0 after its first fill (:func:`search._first_fills`)
-        warm_up()
     return types, variants, problem, copies, hides, scale
 
 

@@ -240,11 +240,14 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     (and, with ``quick``, the other start orders too).  Worker 0 on hides
     answers first with a coarse fill of ``FIRST_CAP_HIDES`` orientations,
     parts with graded regions wholly of their strictest grade
-    (:attr:`Placer.whole_grade`), before it loads the sum kernel (:func:`convex_sums.warm_up`: numpy makes
-    the few thousand sums of coarse regions), then fills with four."""
+    (:attr:`Placer.whole_grade`), then fills with four.  The sum kernel
+    (numba, :func:`convex_sums.warm_up`) is loaded by each worker, by worker
+    0 only after its first fill (numpy makes the sums meanwhile: the few
+    thousand of coarse inner-fit regions, or a sheet's exact no-fit polygons
+    up to ``first_fill_until``)."""
     starts = start_orders(problem, copies)
     first_hides = worker == 0 and problem.hide_net is not None
-    if not first_hides:
+    if worker != 0:
         warm_up()
     k = worker % len(starts)
     starts = starts[k:] + starts[:k]
@@ -266,8 +269,8 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
     budget.improved(best[0], best[1], _out(tr.placements, hides))
     evals = 1
+    warm_up()
     if first_hides:
-        warm_up()
         placer.clock.exact_until = budget.first_fill_until
         if not budget.done(evals):
             # the four-orientation fill (coarse once ``first_fill_until`` passed): at

@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import importlib
+import importlib.util
 import os
 import threading
 import time
@@ -51,12 +53,12 @@ from .shapes import _same_shape, make_variants, piece_from_part, transform_ring
 if TYPE_CHECKING:
     from .separation import Separator
 
+
 def _kernels() -> bool:
     """Can the separation kernels (numba: :mod:`overlap`, :mod:`separation`) be
-    imported?  (Imported here on first use, so a nest on hides never imports
-    numba before its first layout; False e.g. in a bare FreeCAD Python, where
-    the engine runs alone.)"""
-    import importlib
+    imported?  (Imported here on first use, after the engine's search, so no
+    nest imports numba before its first layout; False e.g. in a bare FreeCAD
+    Python, where the engine runs alone.)"""
     try:
         for name in ("overlap", "separation"):
             importlib.import_module(f".{name}", __package__)
@@ -458,7 +460,8 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     t0 = options.started_at if options.started_at is not None else time.monotonic()
     kind = options.container.kind
     if kind not in ("strip", "sheet") or options.max_evaluations is not None \
-            or options.time_budget <= 0 or not _kernels():
+            or options.time_budget <= 0 or importlib.util.find_spec("numba") is None:
+        # (numba itself is imported only after the engine: :func:`_kernels`)
         return run_own(parts, options, progress, on_best, stop)
     share = 1.0 if kind == "sheet" else _search_share(parts)
     # the share splits the time left after reading the drawing (counted from t0)
