@@ -244,7 +244,10 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     (numba, :func:`convex_sums.warm_up`) is loaded by each worker, by worker
     0 only after its first fill (numpy makes the sums meanwhile: the few
     thousand of coarse inner-fit regions, or a sheet's exact no-fit polygons
-    up to ``first_fill_until``)."""
+    up to ``first_fill_until``); on hides after its four-orientation fill
+    when that is coarse (past ``first_fill_until``: Baldacci Test9/10 at
+    T = 10 s under load 5 on 2 cores, the kernel's ~1.5 s wall before it
+    left the search with the one-orientation layout)."""
     starts = start_orders(problem, copies)
     first_hides = worker == 0 and problem.hide_net is not None
     if worker != 0:
@@ -269,13 +272,15 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
     best = (cost_of(problem, starts[0], tr.placements, hides), starts[0], tr)
     budget.improved(best[0], best[1], _out(tr.placements, hides))
     evals = 1
-    warm_up()
+    if not first_hides or time.monotonic() < budget.first_fill_until:
+        warm_up()
     if first_hides:
         placer.clock.exact_until = budget.first_fill_until
         if not budget.done(evals):
             # the four-orientation fill (coarse once ``first_fill_until`` passed): at
             # T = 10 s often the best layout worker 0 has before the deadline
             best, evals = _better(problem, placer, budget, best, starts[0], evals, 4)
+        warm_up()
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
     # evaluations; the other workers search exactly
