@@ -12,7 +12,7 @@ from LeatherCutWorkbench.core.model import Container
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout
 from LeatherCutWorkbench.core.nesting.engine import _to_layout, prepare
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
-from LeatherCutWorkbench.core.nesting.hide_assign import AssignmentSearch, as_layout
+from LeatherCutWorkbench.core.nesting.hide_assign import AssignmentSearch, as_layout, from_placed
 from LeatherCutWorkbench.core.nesting.hide_choice import as_hide_indices
 from LeatherCutWorkbench.core.nesting.search import _mutate
 
@@ -79,6 +79,38 @@ def test_a_finished_set_is_shrunk_to_a_smaller_unused_hide():
     assert min(sum(net[h] for h in x.hides) for x in done) < net[0] + net[1]
 
 
+def test_a_search_takes_over_a_better_complete_set_of_another_worker():
+    """``run``'s ``adopt``: a search on the two larger hides takes over another
+    worker's complete layout on the smallest hide (a bottom-up fill, which
+    this search's left-to-right fills do not make), as
+    :func:`hide_assign.from_placed` rebuilt it -- the very placements,
+    checker-valid -- and ends there: no smaller set is left."""
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.7, 0.8, 0.6])
+    order = sorted(copies, key=lambda t: -problem.type_area[t])
+    theirs = problem.placer()
+    theirs.gravity = "y"
+    other = AssignmentSearch(problem, theirs, random.Random(1), _mutate,
+                             lambda: False).start([2], [[(t, None) for t in order]])
+    assert other.total == 0
+    seq, placements, hide_order = as_layout(other)
+    taken = from_placed(problem.placer(), seq, as_hide_indices(placements, hide_order))
+    assert taken.hides == [2] and taken.total == 0 and as_layout(taken)[1:] == (placements, [2])
+    s = _search(problem, 30.0)
+    st = s.start([1, 0], [[(t, None) for t in order[0::2]], [(t, None) for t in order[1::2]]])
+    assert st.total == 0 and st.traces[0].placements != placements
+    offered, seen = [taken], []
+    t0 = time.monotonic()
+    s.run(st, problem.hide_net, lambda state: seen.append(state.copy()),
+          sum(problem.type_area[t] for t in copies), adopt=lambda: offered.pop() if offered else None)
+    assert time.monotonic() - t0 < 30.0             # ended: nothing smaller than hide 2
+    assert seen[-1].hides == [2] and seen[-1].traces[0].placements == placements
+    seq, placements, hide_order = as_layout(seen[-1])
+    lay = _to_layout(parts, types, variants, seq, as_hide_indices(placements, hide_order), opts,
+                     scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1
+
+
 def test_odd_worker_searches_the_smallest_hides_right_after_its_first_fill():
     """Worker 1 on hides: after its first fill (largest hide first, every copy
     on hide 0) its next layout already lies on the smallest hide -- the
@@ -113,9 +145,9 @@ def test_order_search_worker_hands_over_once_it_stalls_on_a_complete_layout():
     calls = []
     real = search._assign_hides
 
-    def spy(*args):
+    def spy(*args, **kw):
         calls.append(args[-1])                     # the hides it searches
-        return real(*args)
+        return real(*args, **kw)
     search._assign_hides = spy
     try:
         t0 = time.monotonic()

@@ -389,12 +389,18 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
         first = ctx.Event()
         now = time.monotonic()
         wait = (first, now + _WAIT_FIRST * (latest - now)) if _busy(n) else None
+        # hides: each worker hears of the others' complete layouts (Budget.shared);
+        # not with an evaluation limit, whose result depends on the seed alone
+        inboxes = [ctx.Queue() for _ in range(n)] \
+            if problem.hide_net is not None and max_eval is None else None
         procs = [ctx.Process(target=worker_main, daemon=True,
                              args=(problem, copies, seed, i, latest,
                                    fill_limits[0] if i == 0 else fill_limits[1],
                                    max_eval, queue, stop_event, fill_limits[2], fill_limits[3],
-                                   wait if i > 0 else None))
+                                   wait if i > 0 else None,
+                                   inboxes[i] if inboxes is not None else None))
                  for i in range(n)]
+        sent = None                         # the best layout last handed to the workers
         for p in procs:
             p.start()
         done: Dict[int, int] = {}
@@ -402,6 +408,12 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
         try:
             while len(done) + len(errors) < n:
                 _drain(queue, best, done, errors, timeout=0.05)
+                if inboxes is not None and best.best is not None and best.best is not sent \
+                        and best.best[0][0] == 0:
+                    sent = best.best
+                    for i, box in enumerate(inboxes):
+                        if i != sent[3]:
+                            box.put(sent[:3])
                 best.publish()              # shown first, then the tail measured on it
                 report(progress, frac(), best.message())
                 tail.note_load(1 + sum(p.is_alive() for p in procs))
@@ -429,6 +441,9 @@ def _run_pool(problem: Problem, copies: List[int], seed: int, n: int, ends: Tupl
             for p in procs:
                 p.join(1.0)
             queue.close()
+            for box in inboxes or ():
+                box.cancel_join_thread()    # a worker ended may leave layouts unread
+                box.close()
     if best.best is None:
         raise LeatherCutError("nesting workers failed: " + ("; ".join(errors) or "no layout"))
     return sum(max(done.get(i, 0), best.evals.get(i, 0)) for i in range(n))

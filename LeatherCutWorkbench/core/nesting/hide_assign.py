@@ -78,6 +78,8 @@ REPAIR_S = 8.0
 REPAIR_MIN_S = 3.0
 #: a copy taken in place of smaller ones: they make this much more room than it needs
 ROOM = 1.15
+#: seconds between two looks at the other workers' best (:meth:`AssignmentSearch.run`)
+ADOPT_S = 0.5
 
 
 class _Hides:
@@ -102,10 +104,14 @@ class _Hides:
 
 class AssignmentSearch:
     """The search of the module doc on ``placer`` (its caches are reused;
-    ``bin_order`` and ``max_bins`` are restored after each fill)."""
+    ``bin_order`` and ``max_bins`` are restored after each fill).  ``lane``
+    (the worker's index among the copy-to-hide searches): a step down takes
+    the lane-th nearest untried set, so two workers that share their best
+    complete set (:meth:`run`'s ``adopt``) try different smaller ones."""
 
     def __init__(self, problem, placer: Placer, rng: random.Random,
-                 mutate: Callable, expired: Callable[[], bool], deadline: float = math.inf):
+                 mutate: Callable, expired: Callable[[], bool], deadline: float = math.inf,
+                 lane: int = 0):
         self.problem = problem
         self.deadline = deadline          # time.monotonic() at which ``expired`` turns True
         self.placer = placer
@@ -118,6 +124,7 @@ class AssignmentSearch:
         #: the separator of :meth:`_repair` (made on first use; None: not available)
         self._separator = None
         self.repairs = [0, 0]             # repairs tried, copies they fitted
+        self.lane = lane
 
     # ----------------------------------------------------------------- fills
     def _fill(self, st: _Hides, p: int, first: int, limit: float) -> bool:
@@ -248,15 +255,21 @@ class AssignmentSearch:
         return new, [(p, first)]
 
     def run(self, st: _Hides, net: Sequence[float], on_better: Callable[["_Hides"], None],
-            item_area: float, history: int = 50) -> None:
+            item_area: float, history: int = 50,
+            adopt: Optional[Callable[[], Optional["_Hides"]]] = None) -> None:
         """Search from ``st`` until time is up; ``on_better(state)`` on every
         state that leaves less area unplaced than any before on its set.  A
         set that holds every copy is followed by a smaller one
         (:meth:`_smaller`: a step of ``frac`` x its net area, which grows
         after a success and halves when a set stays stuck for ``PATIENCE``
         fills -- then the search goes back to the last set that held every
-        copy)."""
+        copy).  ``adopt()`` (asked at once, then every ``ADOPT_S`` seconds) returns a
+        complete state better than any this search found (another worker's,
+        :func:`from_placed`) or None; the search steps down from it when it
+        needs no more net area than the set searched now, else keeps it as
+        the set to go back to."""
         cur = set_best = st
+        asked = -math.inf
         hist = [cur.total] * history
         low = cur.total
         repaired: set = set()                    # (hides, area left out) repairs tried
@@ -269,6 +282,18 @@ class AssignmentSearch:
         while not self.expired():
             since += 1
             spent += 1
+            if adopt is not None and time.monotonic() - asked >= ADOPT_S:
+                asked = time.monotonic()
+                other = adopt()
+                size = sum(net[h] for h in other.hides) if other is not None else 0.0
+                if other is not None and size <= sum(net[h] for h in cur.hides):
+                    cur = set_best = other
+                    low, since, spent = cur.total, 0, 0
+                    hist = [cur.total] * history
+                    on_better(cur)
+                elif other is not None and (last_done is None or
+                                            size < sum(net[h] for h in last_done.hides)):
+                    last_done, tried = other, set()     # where a stuck search goes back to
             if cur.total < low:
                 low, since, set_best = cur.total, 0, cur
                 on_better(cur)
@@ -424,7 +449,7 @@ class AssignmentSearch:
         from ``st`` -- one hide dropped (its copies spread over the others,
         unplaced) while the copies fill at most ``MAX_FILL`` of the rest.
         Among the untried swaps the one whose loss of net area is nearest to
-        ``frac`` x the set's (the move is added to ``tried``).  None: nothing
+        ``frac`` x the set's (the ``lane``-th nearest; the move is added to ``tried``).  None: nothing
         smaller left.  (Drops came first when their loss was nearer: on Test5
         the search then spent its time on 10 hides that cannot hold the
         copies instead of the 11-hide swaps that can.)"""
@@ -439,7 +464,7 @@ class AssignmentSearch:
         if not moves:
             return None
         moves.sort(key=lambda m: abs(m[0] - frac * total))
-        _loss, p, u = moves[0]
+        _loss, p, u = moves[min(self.lane, len(moves) - 1)]
         tried.add((st.hides[p], u))
         if u >= 0:
             new = st.copy()
@@ -533,6 +558,25 @@ def from_layout(placements: Placements, seq: Sequence[Gene], hide_order: Sequenc
             rest.append((t, seq[si][1]))
     _spread(genes, rest, hides, area, net)
     return genes
+
+
+def from_placed(placer: Placer, seq: Sequence[Gene], placements: Placements) -> Optional[_Hides]:
+    """A state holding a layout that places every copy (placements on hide
+    *indices*, as workers report them): its hides in order of first use, per
+    hide its copies as forced genes at their explicit places
+    (:func:`_explicit_trace`).  None when a copy is left out."""
+    hides: List[int] = []
+    on: dict = {}
+    for (si, b, vi, tx, ty) in placements:
+        if b < 0:
+            return None
+        if b not in on:
+            hides.append(b)
+            on[b] = []
+        on[b].append((seq[si][0], vi, tx, ty))
+    st = _Hides(hides, [[(t, vi) for (t, vi, _x, _y) in on[h]] for h in hides])
+    st.traces = [_explicit_trace(placer, [c[1:] for c in on[h]], 0) for h in hides]
+    return st
 
 
 def as_layout(st: _Hides) -> Tuple[List[Gene], Placements, List[int]]:

@@ -24,7 +24,11 @@ after a quick first fill; even workers run the order search and hand over to
 the copy-to-hide search on their own best set once that search has stalled
 on a layout that places every copy (:func:`_stalled`; Baldacci Test6 at 60 s:
 the order search finds 13 hides / 782 M units^2 by 12 s and nothing better
-after, the hand-over steps that set down to 13 hides of 751-767 M or 12).
+after, the hand-over steps that set down to 13 hides of 751-767 M or 12).  The
+parent hands every worker the others' best complete hide layout
+(:attr:`Budget.shared`); a copy-to-hide search takes it over when it beats its
+own, so the two workers step down from the best set (in different lanes)
+instead of one of them from a worse one.
 
 Each worker process runs its own search with its own random stream (derived
 from the seed and the worker index i) and start order; the best result wins, ties going to the lowest worker index.
@@ -196,7 +200,10 @@ class Budget:
     * ``on_best(cost, order, placements)`` -- called on every new best layout;
     * ``tick(best_cost)`` -- called every few evaluations; False = cancel;
     * ``hard_stop`` -- the first fill goes on with bounding boxes only;
-    * ``give_up_at`` -- even the first fill ends then (copies left unplaced)."""
+    * ``give_up_at`` -- even the first fill ends then (copies left unplaced);
+    * ``shared()`` -- the best layout another worker found since the last
+      call, (cost, order, placements on hide indices), or None (hides: the
+      copy-to-hide search steps down from it when it beats its own)."""
 
     t_end: float
     first_fill_until: float = math.inf
@@ -206,6 +213,7 @@ class Budget:
     tick: Optional[Callable[[Cost], bool]] = None
     hard_stop: float = math.inf
     give_up_at: float = math.inf
+    shared: Optional[Callable[[], Optional[Tuple[Cost, List[Gene], Placements]]]] = None
 
     def done(self, evals: int) -> bool:
         if self.max_evaluations is not None and evals >= self.max_evaluations:
@@ -362,7 +370,7 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             k = min(k, _fewest_loose(problem.hide_net, sum(problem.type_area[c] for c in copies)))
             seed_hides = tight_order(problem.hide_net, k)[:k]
             best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
-                                                    best_hides, evals, seed_hides)
+                                                    best_hides, evals, seed_hides, worker=worker)
         return best[0], best[1], _out(best[2].placements, best_hides), evals
     if worker % 2 == 1 and len(copies) > 1 and not budget.done(evals):
         seq = list(cur_seq)                   # diversify the second worker's start
@@ -401,7 +409,7 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             placer.concave_fit = True
             used = [best_hides[p] for p in used_positions(best[2].placements)]
             best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
-                                                    best_hides, evals, used)
+                                                    best_hides, evals, used, worker=worker)
             break
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
@@ -472,7 +480,7 @@ def _stalled(t_start: float, last_gain: float, t_end: float, best_cost: Cost) ->
 
 
 def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: Budget,
-                  best, best_hides: List[int], evals: int, hides: List[int]):
+                  best, best_hides: List[int], evals: int, hides: List[int], *, worker: int = 0):
     """Hides, odd workers right after a quick first fill (even workers once
     their order search stalled, on the hides of their best layout): the
     copy-to-hide search of :mod:`hide_assign` on ``hides`` -- the k smallest,
@@ -482,10 +490,14 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
     the deadline.  The even workers' order search meanwhile finds complete
     sets from the largest hides down (on Test2 and Test10 the odd worker's own
     order search made only 5-10 fills in 30-45 s: every orientation of large
-    parts, exactly, and repeated what the even worker did).  Returns the best
+    parts, exactly, and repeated what the even worker did).  A complete layout
+    another worker found (``budget.shared``) that beats this search's best is
+    taken over; ``worker`` % 2 is the search's lane (its step-down choice,
+    :class:`hide_assign.AssignmentSearch`), so the two workers then try
+    different smaller sets from the same one.  Returns the best
     (cost, order, trace), its hide order and the evaluations."""
     from .blf import Trace
-    from .hide_assign import AssignmentSearch, as_layout, from_layout
+    from .hide_assign import AssignmentSearch, as_layout, from_layout, from_placed
     net = problem.hide_net
     item_area = sum(problem.type_area[g[0]] for g in best[1])
     genes = from_layout(best[2].placements, best[1], best_hides, hides, problem.type_area, net)
@@ -507,10 +519,23 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
             holder[0], holder[1] = (c, seq, Trace(placements, [])), order
             budget.improved(c, seq, _out(placements, order))
 
-    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end)
+    def adopt():
+        """Another worker's complete layout when it beats this search's best."""
+        got = budget.shared() if budget.shared is not None else None
+        other = from_placed(placer, got[1], got[2]) if got is not None else None
+        if other is None:
+            return None
+        seq, placements, order = as_layout(other)
+        c = cost_of(problem, seq, placements, order)
+        if not c < holder[0][0]:
+            return None
+        holder[0], holder[1] = (c, seq, Trace(placements, [])), order
+        return other
+
+    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end, lane=worker % 2)
     st = s.start(hides, genes)
     if st is not None:
-        s.run(st, net, on_better, item_area)
+        s.run(st, net, on_better, item_area, adopt=adopt)
     return holder[0], holder[1], evals + s.evals
 
 
@@ -603,13 +628,15 @@ def search(problem: Problem, copies: List[int], seed: int, worker: int, budget: 
 def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_end: float,
                 first_fill_until: float, max_evaluations: Optional[int], queue, stop_event,
                 hard_stop: float = math.inf, give_up_at: float = math.inf,
-                wait_first: Optional[Tuple[object, float]] = None) -> None:
+                wait_first: Optional[Tuple[object, float]] = None, inbox=None) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
     ("best", worker, cost, order, placements), every 10 evaluations
     ("evals", worker, count); the end as ("done", worker, evaluations) or
     ("error", worker, message).  ``stop_event`` set = stop now.
     ``wait_first`` = (event, time): start only once the event is set (the
-    first layout exists) or the time passed."""
+    first layout exists) or the time passed.  ``inbox``: a queue of the
+    other workers' best layouts (cost, order, placements), newest last
+    (:attr:`Budget.shared`)."""
     if wait_first is not None:
         event, until = wait_first
         event.wait(max(0.0, until - time.monotonic()))
@@ -622,8 +649,17 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
         ticks[0] += 10
         queue.put(("evals", worker, ticks[0]))
         return True
+    def shared():
+        import queue as _q
+        got = None
+        while inbox is not None:
+            try:
+                got = inbox.get_nowait()
+            except _q.Empty:
+                break
+        return got
     budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
-                    hard_stop=hard_stop, give_up_at=give_up_at)
+                    hard_stop=hard_stop, give_up_at=give_up_at, shared=shared)
     try:
         _, _, _, evals = search(problem, copies, seed, worker, budget)
         queue.put(("done", worker, evals))
