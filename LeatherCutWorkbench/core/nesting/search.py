@@ -51,6 +51,7 @@ import math
 import random
 import time
 from dataclasses import dataclass
+from queue import Empty
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinSpec, Placer
@@ -287,7 +288,7 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
         if not budget.done(evals):
             # the four-orientation fill (coarse once ``first_fill_until`` passed): at
             # T = 10 s often the best layout worker 0 has before the deadline
-            best, evals = _better(problem, placer, budget, best, starts[0], evals, 4)
+            best, evals, _ = _better(problem, placer, budget, best, starts[0], evals, 4)
         warm_up()
     # worker 0 keeps searching with coarse NFPs for pairs not cached yet when exact
     # ones are expensive (arc-rich garment outlines: tens of ms each) -- many cheap
@@ -297,7 +298,7 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
         placer.clock.exact_until = math.inf
     if worker == 0 and problem.hide_net is not None and not budget.done(evals):
         # the quick first fill again, exactly
-        best, evals = _better(problem, placer, budget, best, starts[0], evals, None)
+        best, evals, _ = _better(problem, placer, budget, best, starts[0], evals, None)
     cheap = (time.monotonic() - t0) < 0.25 * max(budget.t_end - t0, 0.0)
     for order in starts[1:]:
         if not cheap or budget.done(evals):
@@ -305,22 +306,19 @@ def _first_fills(problem: Problem, placer: Placer, copies: Sequence[int], worker
         # the copy-to-hide worker (``quick``) re-fills every hide itself and only
         # needs their hide count and copies: four orientations (Baldacci Test5
         # under load: its search started with 50 s of 60 left instead of 20)
-        tr = placer.place(order, variant_cap=4 if quick else None)
-        evals += 1
-        if tr is None:
+        best, evals, filled = _better(problem, placer, budget, best, order, evals,
+                                      4 if quick else None)
+        if not filled:
             break
-        c = cost_of(problem, order, tr.placements, hides)
-        if c < best[0]:
-            best = (c, order, tr)
-            budget.improved(c, order, _out(tr.placements, hides))
     return best, evals
 
 
 def _better(problem: Problem, placer: Placer, budget: Budget, best, order: List[Gene],
             evals: int, cap: Optional[int]):
     """One more (abortable) fill of ``order`` with at most ``cap`` orientations
-    per copy (None: the placer's default); returns (best, evaluations), the
-    fill's layout reported and kept when it is better."""
+    per copy (None: the placer's default); returns (best, evaluations, whether
+    the fill ran to its end), the fill's layout reported and kept when it is
+    better."""
     tr = placer.place(order, variant_cap=cap)
     if tr is not None:
         hides = placer.bin_order
@@ -328,7 +326,7 @@ def _better(problem: Problem, placer: Placer, budget: Budget, best, order: List[
         if c < best[0]:
             best = (c, order, tr)
             budget.improved(c, order, _out(tr.placements, hides))
-    return best, evals + 1
+    return best, evals + 1, tr is not None
 
 
 def _out(placements: Placements, hide_order: Optional[List[int]]) -> Placements:
@@ -650,12 +648,11 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
         queue.put(("evals", worker, ticks[0]))
         return True
     def shared():
-        import queue as _q
         got = None
         while inbox is not None:
             try:
                 got = inbox.get_nowait()
-            except _q.Empty:
+            except Empty:
                 break
         return got
     budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
