@@ -1,7 +1,7 @@
 """Compile the nesting engine's numba kernels once, at set-up (tools/setup.sh).
 
 The kernels (``@njit(cache=True)`` in core/nesting: convex_kernel, overlap,
-separation, hide_separation) compile in ~8 s on their first use after the
+separation, compaction, hide_separation) compile in ~8 s on their first use after the
 sources changed and are then loaded from numba's disk cache in well under a
 second.  Without this step a user's first nest after ``bash bootstrap.sh``
 would pay the compile inside its time budget.  Each kernel runs once on a
@@ -52,7 +52,7 @@ def main() -> int:
         from LeatherCutWorkbench.core.nesting.hide_separation import warm_up
         from LeatherCutWorkbench.core.nesting.overlap import PairTable
         from LeatherCutWorkbench.core.nesting.separation import Separator
-        from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance
+        from LeatherCutWorkbench.core.nesting.strip_shrink import _Instance, _compact
     except RuntimeError as exc:           # numba: "cannot cache function ... no locator"
         print(f"warm_jit: numba cannot cache its kernels ({exc})", file=sys.stderr)
         return 3
@@ -60,8 +60,10 @@ def main() -> int:
     opts = NestOptions(container=ContainerSpec.strip(60.0), workers=1)
     convex_sums.warm_up()
     inst = _Instance(_row(parts), parts, opts)
-    Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0, inst.y1,
-              inst.x0, inst.eps).warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+    sep = Separator(PairTable(inst.variants), inst.cb, inst.choices, inst.types, inst.y0, inst.y1,
+                    inst.x0, inst.eps)
+    sep.warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+    _compact(sep, inst.X.copy(), inst.Y.copy(), inst.V)
     warm_up()
     print(f"warm_jit: nesting kernels ready in {time.monotonic() - t0:.1f} s"
           f" ({os.environ.get('NUMBA_CACHE_DIR') or 'next to the sources'})")

@@ -7,7 +7,9 @@ until the deadline, repeatedly
    of a random vertical cut move left by the difference (sparrow's shrink),
    everything is pushed back inside, which creates overlaps;
 2. runs the separator (:mod:`separation`: guided local search over the
-   penetration depths of :mod:`overlap`) until no pair overlaps;
+   penetration depths of :mod:`overlap`) until no pair overlaps, then moves
+   every copy left where it fits (:mod:`compaction`), so the next target
+   starts from the shortest strip that arrangement allows;
 3. *exploration* (the first ``1 - COMPRESSION_SHARE`` of the time,
    :func:`_explore`): each worker keeps its own infeasible layout at its
    target length.  A failed separation joins a pool of the least-overlapping
@@ -55,12 +57,13 @@ if TYPE_CHECKING:
 
 
 def _kernels() -> bool:
-    """Can the separation kernels (numba: :mod:`overlap`, :mod:`separation`) be
+    """Can the separation kernels (numba: :mod:`overlap`, :mod:`separation`,
+    :mod:`compaction`) be
     imported?  (Imported here on first use, after the engine's search, so no
     nest imports numba before its first layout; False e.g. in a bare FreeCAD
     Python, where the engine runs alone.)"""
     try:
-        for name in ("overlap", "separation"):
+        for name in ("overlap", "separation", "compaction"):
             importlib.import_module(f".{name}", __package__)
     except ImportError:       # pragma: no cover - the project's venv always has numba
         return False
@@ -354,10 +357,18 @@ def _separate(inst: _Instance, sep: Separator, shared: _Best, X, Y, V, x1: float
     soon as another worker has reached ``x1`` (its work could not be kept)."""
     if not sep.separate(X, Y, V, x1, until, rng=rng, give_up=lambda: shared.get()[0] <= x1):
         return None
+    _compact(sep, X, Y, V)
     best = (inst.right_edge(X, V), X, Y, V)
     shared.offer(best)
     found[:] = (found + [best])[-KEEP:]
     return best
+
+
+def _compact(sep: Separator, X, Y, V) -> None:
+    """Move the copies of the overlap-free (X, Y, V) left where they fit
+    (:func:`compaction.compact_left`, the separator's overlap test)."""
+    from .compaction import compact_left
+    compact_left(X, Y, V, sep.cb, sep.x0, sep.y0, sep.y1, sep.eps, sep.table.n, *sep.arrs)
 
 
 def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
@@ -390,6 +401,7 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
     seps = [Separator(table, inst.cb, inst.choices, inst.types, inst.y0, inst.y1, inst.x0,
                       inst.eps, stop=stop, pad=inst.pad) for _ in range(n)]
     seps[0].warm_up(inst.X, inst.Y, inst.V, inst.right_edge(inst.X, inst.V))
+    _compact(seps[0], inst.X.copy(), inst.Y.copy(), inst.V)     # compile it before the clock runs
     # threads, not processes: the kernels release the GIL (nogil), so the workers
     # run in parallel without pickling, forking or FreeCAD's stdin quirks
     t0 = time.monotonic()
