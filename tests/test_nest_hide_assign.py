@@ -9,7 +9,7 @@ import time
 from dataclasses import replace
 
 from LeatherCutWorkbench.core.model import Container
-from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout
+from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, placed_parts
 from LeatherCutWorkbench.core.nesting.engine import _to_layout, prepare
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.hide_assign import AssignmentSearch, as_layout, from_placed
@@ -202,3 +202,35 @@ def test_worker_0_first_layout_turns_each_part_one_way_then_fills_with_four():
     assert [c for c, _o, _p in seen] == sorted((c for c, _o, _p in seen), reverse=True)
     if len(seen) > 1:                     # the four-orientation fill was better
         assert not {vi for (_si, b, vi, _x, _y) in seen[1][2] if b >= 0} <= one_way
+
+
+def test_each_hide_is_filled_from_its_own_side_and_stays_valid():
+    """One hide per gravity: the same few copies on Test8's outline packed from
+    the left, the bottom, the right and the top.  Each fill lies against its
+    side (its copies' mean centre is off the hide's centre that way) and every
+    layout passes the independent checker."""
+    parts, hides, opts, (_t, _v, problem, copies, _h, _s) = _setup([0.6] * 4)
+    big = sorted(set(copies), key=lambda t: -problem.type_area[t])[:3]
+    parts = [replace(parts[t], quantity=4) for t in big]       # each hide: one copy of each
+    types, variants, problem, copies, _h, scale = prepare(parts, opts)
+    s = _search(problem, 30.0)
+    st = s.start([0, 1, 2, 3], [[(t, None) for t in range(3)] for _ in range(4)],
+                 gravity=["x", "y", "-x", "-y"])
+    assert st.total == 0
+    seq, placements, order = as_layout(st)
+    lay = _to_layout(parts, types, variants, seq, as_hide_indices(placements, order), opts,
+                     scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    xs = [x for x, _ in hides[0].outline]
+    ys = [y for _, y in hides[0].outline]
+    cx, cy = (min(xs) + max(xs)) / 2.0, (min(ys) + max(ys)) / 2.0
+    centres = {}
+    for pl, part in zip(lay.placements, placed_parts(parts, lay)):
+        x0, y0, x1, y1 = part.outer.bbox
+        centres.setdefault(pl.container, []).append(((x0 + x1) / 2.0, (y0 + y1) / 2.0))
+    mean = {c: (sum(x for x, _ in v) / len(v), sum(y for _, y in v) / len(v))
+            for c, v in centres.items()}
+    assert len(mean) == 4
+    assert mean["h0"][0] < cx and mean["h2"][0] > cx        # from the left, from the right
+    assert mean["h1"][1] < cy and mean["h3"][1] > cy        # from the bottom, from the top
+    assert mean["h2"][0] > mean["h0"][0] and mean["h3"][1] > mean["h1"][1]

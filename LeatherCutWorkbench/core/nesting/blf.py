@@ -107,7 +107,9 @@ class Placer:
         #: default ``variant_cap`` of :meth:`place` (None: every orientation)
         self.variant_cap: Optional[int] = None
         #: "x": the candidate with the smallest right edge wins (module doc);
-        #: "y" (hides only: bins are never closed by extent): the lowest top edge
+        #: hides only (bins are never closed by extent): "y" the lowest top edge,
+        #: "-x" the right-most left edge, "-y" the highest bottom edge (the
+        #: fill packs from that side of the hide; :mod:`hide_assign` picks one per hide)
         self.gravity = "x"
         #: hides: spec index per fill position (None: in the given order)
         self.bin_order: Optional[List[int]] = None
@@ -285,7 +287,9 @@ class Placer:
         return region
 
     def best_position(self, b: int, state: "BinState", vi: int) -> Optional[Tuple[int, int, int]]:
-        """Best (right edge, x, y) candidate of variant ``vi`` in bin ``b`` or None."""
+        """Best (key, x, y) candidate of variant ``vi`` in bin ``b`` or None; the
+        key is the edge :attr:`gravity` minimises (lower is better; "x": the
+        right edge)."""
         free = self.free_region(b, state, vi)
         if not free:
             return None
@@ -301,10 +305,19 @@ class Placer:
                 if rc.ok(sb, v.type_index, v.angle, v.mirrored, int(pts[k, 0]), int(pts[k, 1])):
                     return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
             return None
-        if self.gravity == "y":           # lowest top edge, then leftmost
+        g = self.gravity
+        if g == "y":                      # lowest top edge, then leftmost
             top = pts[:, 1] + v.bbox[3]
             k = np.lexsort((pts[:, 0], top))[0]
             return int(top[k]), int(pts[k, 0]), int(pts[k, 1])
+        if g == "-y":                     # highest bottom edge, then rightmost
+            key = -(pts[:, 1] + v.bbox[1])
+            k = np.lexsort((-pts[:, 0], key))[0]
+            return int(key[k]), int(pts[k, 0]), int(pts[k, 1])
+        if g == "-x":                     # rightmost left edge, then highest
+            key = -(pts[:, 0] + v.bbox[0])
+            k = np.lexsort((-pts[:, 1], key))[0]
+            return int(key[k]), int(pts[k, 0]), int(pts[k, 1])
         k = np.lexsort((pts[:, 0], pts[:, 1], right))[0]
         return int(right[k]), int(pts[k, 0]), int(pts[k, 1])
 

@@ -21,7 +21,8 @@ swap was tried) -- a step down, as a strip is shrunk -- and the search makes
 that set hold every copy again.  Moves
 (late-acceptance hill climbing): move a copy (an unplaced one, mostly) to
 another hide, swap two copies of different hides, change one hide's
-sequence (:func:`search._mutate`), or exchange a hide of the set with an
+sequence (:func:`search._mutate`), fill one hide from another side
+(:attr:`blf.Placer.gravity`: each hide has its own), or exchange a hide of the set with an
 unused one while the set's net area stays strictly below the last set
 that held every copy (5 % above the k smallest before there is one).  A move
 re-fills only the hides it touches, from the first changed position.
@@ -78,6 +79,9 @@ REPAIR_S = 8.0
 REPAIR_MIN_S = 3.0
 #: a copy taken in place of smaller ones: they make this much more room than it needs
 ROOM = 1.15
+#: share of the moves that fill one hide from another side (:attr:`blf.Placer.gravity`)
+GRAVITY_P = 0.05
+GRAVITIES = ("x", "y", "-x", "-y")
 #: seconds between two looks at the other workers' best (:meth:`AssignmentSearch.run`)
 ADOPT_S = 0.5
 
@@ -90,11 +94,15 @@ class _Hides:
         self.genes = genes
         self.traces: List[Optional[Trace]] = [None] * len(hides)
         self.lost = [0.0] * len(hides)      # unplaced part area per hide
+        #: per position the side the hide is filled from (:attr:`blf.Placer.gravity`;
+        #: None: the placer's own)
+        self.gravity: List[Optional[str]] = [None] * len(hides)
 
     def copy(self) -> "_Hides":
         c = _Hides(list(self.hides), [list(g) for g in self.genes])
         c.traces = list(self.traces)
         c.lost = list(self.lost)
+        c.gravity = list(self.gravity)
         return c
 
     @property
@@ -131,15 +139,16 @@ class AssignmentSearch:
         """Re-fill position ``p`` of ``st`` from gene ``first``; False when the
         fill left out more than ``limit`` (abandoned) or ran out of time."""
         pl = self.placer
-        saved = pl.bin_order, pl.max_bins
+        saved = pl.bin_order, pl.max_bins, pl.gravity
         pl.bin_order, pl.max_bins = [st.hides[p]], 1
+        pl.gravity = st.gravity[p] or saved[2]
         try:
             prev = st.traces[p]
             keep = min(first, len(prev.placements)) if prev is not None else 0
             tr = pl.place(st.genes[p], prev if keep > 0 else None, keep,
                           give_up=(limit, self.area))
         finally:
-            pl.bin_order, pl.max_bins = saved
+            pl.bin_order, pl.max_bins, pl.gravity = saved
         self.evals += 1
         if tr is None:
             return False
@@ -147,8 +156,11 @@ class AssignmentSearch:
         st.lost[p] = sum(self.area[st.genes[p][si][0]] for si in tr.unplaced)
         return True
 
-    def start(self, hides: List[int], genes: List[List[Gene]]) -> Optional[_Hides]:
+    def start(self, hides: List[int], genes: List[List[Gene]],
+              gravity: Optional[List[Optional[str]]] = None) -> Optional[_Hides]:
         st = _Hides(hides, genes)
+        if gravity is not None:
+            st.gravity = list(gravity)
         for p in range(len(hides)):
             if not self._fill(st, p, 0, float("inf")):
                 return None
@@ -169,7 +181,7 @@ class AssignmentSearch:
         if not lost or len(st.hides) < 2:
             return
         pl = self.placer
-        saved = pl.bin_order, pl.max_bins
+        saved = pl.bin_order, pl.max_bins, pl.gravity
         gone: dict = {}
         try:
             for p, si in lost:
@@ -182,6 +194,7 @@ class AssignmentSearch:
                     if q == p or st.traces[q] is None:
                         continue
                     pl.bin_order, pl.max_bins = [st.hides[q]], 1
+                    pl.gravity = st.gravity[q] or saved[2]
                     seq = st.genes[q] + [g]
                     tr = pl.place(seq, st.traces[q], len(st.genes[q]))
                     self.evals += 1
@@ -190,7 +203,7 @@ class AssignmentSearch:
                         gone.setdefault(p, []).append(si)
                         break
         finally:
-            pl.bin_order, pl.max_bins = saved
+            pl.bin_order, pl.max_bins, pl.gravity = saved
         for p, out in gone.items():
             for si in sorted(out, reverse=True):
                 _drop_unplaced(st, p, si)
@@ -248,6 +261,12 @@ class AssignmentSearch:
         p = rng.choices(range(n), weights=weights)[0]
         if len(st.genes[p]) < 1:
             return new, []
+        if r > 1.0 - GRAVITY_P:
+            # fill the hide from another side: the same copies may leave their
+            # free material in one piece where the other side's fill leaves slivers
+            now = st.gravity[p] or self.placer.gravity
+            new.gravity[p] = rng.choice([g for g in GRAVITIES if g != now])
+            return new, [(p, 0)]
         g, first = self.mutate(rng, new.genes[p], self.problem)
         if first >= len(g):
             return new, []
@@ -477,7 +496,7 @@ class AssignmentSearch:
         hides = [h for q, h in enumerate(st.hides) if q != p]
         genes = [list(g) for q, g in enumerate(st.genes) if q != p]
         _spread(genes, st.genes[p], hides, self.area, net)
-        return self.start(hides, genes)
+        return self.start(hides, genes, [g for q, g in enumerate(st.gravity) if q != p])
 
 
 def _drop_unplaced(st: _Hides, p: int, k: int) -> None:
