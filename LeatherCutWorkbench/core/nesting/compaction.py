@@ -1,15 +1,13 @@
 """Left compaction of an overlap-free strip layout.
 
-After the separator (:mod:`separation`) has removed every overlap at a
-target length, the copies often still leave gaps: the separator stops at
+At the end of the strip phase (:mod:`strip_shrink`) the kept overlap-free
+layouts often still leave gaps: the separator (:mod:`separation`) stops at
 the first overlap-free arrangement, so a copy may float a little right of
 where it could lie.  :func:`compact_left` moves each copy, leftmost first,
 as far left as it can go without a new overlap: jumps that halve from the
 whole distance to the strip's start down to a small floor, straight left or
 diagonally (left and down, left and up, so a copy resting on a neighbour's
-slope can slide past it).  The strip's right edge can only move left, so a
-separation that just reached its target often ends a little shorter than
-that, and the next target starts from there.
+slope can slide past it).  The strip's right edge can only move left.
 
 Invariant: no pair's penetration depth (:func:`overlap.pair_depth`) exceeds
 ``eps`` after a move that did not exceed it before (the separator's own
@@ -18,9 +16,8 @@ of its start.  Lengths are grid units of the engine (:mod:`shapes`).
 
 Why numba: one compaction tests a few thousand candidate places against
 every other copy (a bounding-box reject, then the edges of one no-fit
-polygon); in plain Python that is ~100x slower than the separation it
-follows.  Hand-written: no library moves copies against packed no-fit
-polygons.
+polygon); in plain Python that is ~100x slower.  Hand-written: no library
+moves copies against packed no-fit polygons.
 """
 
 from __future__ import annotations

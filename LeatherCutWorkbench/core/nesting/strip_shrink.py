@@ -7,9 +7,7 @@ until the deadline, repeatedly
    of a random vertical cut move left by the difference (sparrow's shrink),
    everything is pushed back inside, which creates overlaps;
 2. runs the separator (:mod:`separation`: guided local search over the
-   penetration depths of :mod:`overlap`) until no pair overlaps, then moves
-   every copy left where it fits (:mod:`compaction`), so the next target
-   starts from the shortest strip that arrangement allows;
+   penetration depths of :mod:`overlap`) until no pair overlaps;
 3. *exploration* (the first ``1 - COMPRESSION_SHARE`` of the time,
    :func:`_explore`): each worker keeps its own infeasible layout at its
    target length.  A failed separation joins a pool of the least-overlapping
@@ -27,7 +25,12 @@ length and goes on from that layout (each compression shrink starts from the
 shortest strip any of them has found).  The
 result is re-checked by the independent :func:`checker.check_layout`; if it
 is not valid or not shorter, the input layout is returned unchanged, so the
-phase can never make a layout worse.
+phase can never make a layout worse.  Before that check, each kept layout
+moves every copy left where it fits (:mod:`compaction`): that can only
+shorten the strip.  Only there: compacting every separated layout (the next
+target then starting from the compacted strip), in all workers or in every
+other one, raised fu and shirts but lost albano below spyrrow on one seed in
+three (docs/BENCHMARKS.md).
 
 Lengths: mm in the :class:`Layout`, the engine's integer grid inside.
 """
@@ -357,7 +360,6 @@ def _separate(inst: _Instance, sep: Separator, shared: _Best, X, Y, V, x1: float
     soon as another worker has reached ``x1`` (its work could not be kept)."""
     if not sep.separate(X, Y, V, x1, until, rng=rng, give_up=lambda: shared.get()[0] <= x1):
         return None
-    _compact(sep, X, Y, V)
     best = (inst.right_edge(X, V), X, Y, V)
     shared.offer(best)
     found[:] = (found + [best])[-KEEP:]
@@ -420,13 +422,16 @@ def improve_strip(layout: Layout, parts: Sequence[Part], options: NestOptions,
         finally:
             stop.set()
         found = sorted((st for f in futs for st in f.result()), key=lambda st: st[0])
-    # the shortest layout the checker passes (the penalty model is exact up to
-    # rounding; the checker has the last word and a shorter rejected layout
-    # falls back to the next one)
-    for st in found[:KEEP]:
-        new = _accept(layout, parts, options, inst.to_layout(layout, st[1], st[2], st[3]))
-        if new is not layout:
-            return new
+    # the shortest layout the checker passes, each first compacted, then as
+    # found (the penalty model is exact up to rounding; the checker has the
+    # last word and a shorter rejected layout falls back to the next one)
+    for _, X, Y, V in found[:KEEP]:
+        Xc, Yc = X.copy(), Y.copy()
+        _compact(seps[0], Xc, Yc, V)
+        for cx, cy in ((Xc, Yc), (X, Y)):
+            new = _accept(layout, parts, options, inst.to_layout(layout, cx, cy, V))
+            if new is not layout:
+                return new
     return layout
 
 
