@@ -138,23 +138,35 @@ class AssignmentSearch:
     def _fill(self, st: _Hides, p: int, first: int, limit: float) -> bool:
         """Re-fill position ``p`` of ``st`` from gene ``first``; False when the
         fill left out more than ``limit`` (abandoned) or ran out of time."""
+        prev = st.traces[p]
+        keep = min(first, len(prev.placements)) if prev is not None else 0
+        tr = self._place_on(st, p, st.genes[p], prev if keep > 0 else None, keep,
+                            give_up=(limit, self.area))
+        if tr is None:
+            return False
+        st.traces[p] = tr
+        self._recount(st, p)
+        return True
+
+    def _place_on(self, st: _Hides, p: int, seq: List[Gene], prev: Optional[Trace],
+                  keep: int, **kw) -> Optional[Trace]:
+        """:meth:`blf.Placer.place` of ``seq`` on hide position ``p`` of ``st``
+        alone, filled from that hide's side; the placer's hide order, bin count
+        and side are restored afterwards."""
         pl = self.placer
         saved = pl.bin_order, pl.max_bins, pl.gravity
         pl.bin_order, pl.max_bins = [st.hides[p]], 1
         pl.gravity = st.gravity[p] or saved[2]
         try:
-            prev = st.traces[p]
-            keep = min(first, len(prev.placements)) if prev is not None else 0
-            tr = pl.place(st.genes[p], prev if keep > 0 else None, keep,
-                          give_up=(limit, self.area))
+            tr = pl.place(seq, prev, keep, **kw)
         finally:
             pl.bin_order, pl.max_bins, pl.gravity = saved
         self.evals += 1
-        if tr is None:
-            return False
-        st.traces[p] = tr
-        st.lost[p] = sum(self.area[st.genes[p][si][0]] for si in tr.unplaced)
-        return True
+        return tr
+
+    def _recount(self, st: _Hides, p: int) -> None:
+        """``st.lost[p]``: the part area its trace leaves unplaced."""
+        st.lost[p] = sum(self.area[st.genes[p][k][0]] for k in st.traces[p].unplaced)
 
     def start(self, hides: List[int], genes: List[List[Gene]],
               gravity: Optional[List[Optional[str]]] = None) -> Optional[_Hides]:
@@ -180,34 +192,26 @@ class AssignmentSearch:
                       key=lambda x: -self.area[st.genes[x[0]][x[1]][0]])
         if not lost or len(st.hides) < 2:
             return
-        pl = self.placer
-        saved = pl.bin_order, pl.max_bins, pl.gravity
         gone: dict = {}
-        try:
-            for p, si in lost:
-                if self.expired():
+        for p, si in lost:
+            if self.expired():
+                break
+            g = (st.genes[p][si][0], None)
+            free = {q: self.net[st.hides[q]] - sum(
+                self.area[x[0]] for x in st.genes[q]) for q in range(len(st.hides))}
+            for q in sorted(free, key=lambda q: -free[q]):
+                if q == p or st.traces[q] is None:
+                    continue
+                seq = st.genes[q] + [g]
+                tr = self._place_on(st, q, seq, st.traces[q], len(st.genes[q]))
+                if tr is not None and tr.placements[-1][1] >= 0:
+                    st.genes[q], st.traces[q] = seq, tr
+                    gone.setdefault(p, []).append(si)
                     break
-                g = (st.genes[p][si][0], None)
-                free = {q: self.net[st.hides[q]] - sum(
-                    self.area[x[0]] for x in st.genes[q]) for q in range(len(st.hides))}
-                for q in sorted(free, key=lambda q: -free[q]):
-                    if q == p or st.traces[q] is None:
-                        continue
-                    pl.bin_order, pl.max_bins = [st.hides[q]], 1
-                    pl.gravity = st.gravity[q] or saved[2]
-                    seq = st.genes[q] + [g]
-                    tr = pl.place(seq, st.traces[q], len(st.genes[q]))
-                    self.evals += 1
-                    if tr is not None and tr.placements[-1][1] >= 0:
-                        st.genes[q], st.traces[q] = seq, tr
-                        gone.setdefault(p, []).append(si)
-                        break
-        finally:
-            pl.bin_order, pl.max_bins, pl.gravity = saved
         for p, out in gone.items():
             for si in sorted(out, reverse=True):
                 _drop_unplaced(st, p, si)
-            st.lost[p] = sum(self.area[st.genes[p][k][0]] for k in st.traces[p].unplaced)
+            self._recount(st, p)
 
     # ----------------------------------------------------------------- moves
     def _neighbour(self, st: _Hides, net: Sequence[float], net_cap: float,
@@ -416,8 +420,7 @@ class AssignmentSearch:
                     rest.extend((c[0], None) for c in gone)
                     if q != p:
                         _drop_unplaced(new, p, si)
-                        new.lost[p] = sum(self.area[new.genes[p][k][0]]
-                                          for k in new.traces[p].unplaced)
+                        self._recount(new, p)
                     new.genes[q] = [(c[0], c[1]) for c in res] + rest
                     new.traces[q] = _explicit_trace(self.placer, [c[1:] for c in res], len(rest))
                     new.lost[q] = sum(self.area[g[0]] for g in rest)
