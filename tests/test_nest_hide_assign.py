@@ -234,3 +234,24 @@ def test_each_hide_is_filled_from_its_own_side_and_stays_valid():
     assert mean["h0"][0] < cx and mean["h2"][0] > cx        # from the left, from the right
     assert mean["h1"][1] < cy and mean["h3"][1] > cy        # from the bottom, from the top
     assert mean["h2"][0] > mean["h0"][0] and mean["h3"][1] > mean["h1"][1]
+
+
+def test_a_layout_that_lost_a_copy_is_refused_and_reported_with_its_call_chain():
+    """``cost_of`` counts only the copies left out, so a layout whose order
+    lost a copy would look complete (and on fewer hides) and win; the
+    worker's budget refuses it and says where it came from."""
+    from LeatherCutWorkbench.core.nesting.search import Budget, cost_of
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.45, 0.55])
+    placer = problem.placer()
+    order = [(t, None) for t in copies]
+    tr = placer.place(order)
+    full = tr.placements
+    reported, lost = [], []
+    b = Budget(time.monotonic() + 5, copies=sorted(copies), on_lost=lost.append,
+               on_best=lambda c, o, p: reported.append(len(o)))
+    short = [pl for pl in full if pl[0] != len(order) - 1]      # the last copy's placement gone
+    b.improved(cost_of(problem, order[:-1], short), order[:-1], short)
+    assert reported == [] and len(lost) == 1
+    assert lost[0].startswith("test_a_layout_that_lost_a_copy") and lost[0].count(" < ") <= 7
+    b.improved(cost_of(problem, order, full), order, full)
+    assert reported == [len(copies)] and len(lost) == 1

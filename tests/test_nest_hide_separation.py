@@ -113,3 +113,52 @@ def test_copy_to_hide_search_repairs_a_left_out_copy_and_refills_after_it():
     seq, placements, order = as_layout(fixed)
     lay = _layout(parts, opts, prepared, seq, as_hide_indices(placements, order))
     assert check_layout(parts, lay, rotations_override=ANGLES) == []
+
+
+def test_no_container_depth_is_zero_beyond_the_far_box_of_the_complement():
+    """The complement of a region ends at a far box; a point pushed beyond
+    it (the complement's nearest edge is the box) must stay deep, and an
+    empty region (a variant that fits nowhere) has no point of depth 0."""
+    sq = np.array([[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]])
+    region = _Region([[sq], []])
+    box = region.bbox[0]
+    X = np.array([5.0, 20.0, box[0] + 1.0, box[0] - 1.0, box[2] + 1e3, 5.0, box[0] - 1.0])
+    Y = np.array([5.0, 5.0, 5.0, 5.0, 5.0, 5.0, 5.0])
+    V = np.array([0, 0, 0, 0, 0, 1, 1], dtype=np.int64)
+    d = container_depths(X, Y, V, *region.arrays())[:, 0]
+    assert d[0] == 0.0 and abs(d[1] - 10.0) < 1e-9
+    assert (d[2:] > 0.0).all()                       # near the box, beyond it, empty region
+    assert d[3] >= d[2] and d[4] >= d[2]             # beyond the box: deeper than just inside
+
+
+def test_separator_keeps_a_copy_whose_hull_fits_nowhere_on_the_hide():
+    """Test6 hide o_5 and part i_33 turned 330 degrees: its convex hull fits
+    nowhere on the hide, its own outline does (the fill places it with
+    ``concave_fit``).  Its separation region is the exact one, so when a copy
+    of i_22 is fitted next to it, it stays where the fill put it.  With the
+    hull's region (empty) its container depth was the distance to the far box
+    of the region's complement: the separator pushed it out of the box (to
+    x = -7.6e11 grid units in a Test6 run) and called it fitted; the engine's
+    checker then left it out of a 60 s Test6 layout (42/43)."""
+    inst = read_esicup(os.path.join(DATA, "Test6_items22_33_hide5.json"))
+    full = inst.hides[0].base_grade
+    parts = [replace(p, grade=full, grade_regions=[], quantity=1) for p in inst.parts]
+    angles = [float(a) for a in range(0, 360, 30)]
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=60, workers=1,
+                       rotations_override=angles, seed=1)
+    types, variants, problem, _copies, hides, scale = prepare(parts, opts)
+    placer = problem.placer()
+    placer.concave_fit = True
+    hull_less = [vi for vi in problem.type_variants[1] if not placer.hide_ifp(0, vi)
+                 and placer.hide_ifp(0, vi, concave=True)]
+    assert len(hull_less) == 1 and variants[hull_less[0]].angle == 330.0
+    vi = hull_less[0]
+    tr = placer.place([(1, vi)])
+    (_si, b, v, x, y), = tr.placements
+    assert b == 0 and v == vi
+    out = HideSeparator(placer, problem.type_area, 1.0).fit(0, [(1, vi, x, y)], [0],
+                                                            time.monotonic() + 20.0, seed=1)
+    assert out is not None and out[0] == (1, vi, x, y)
+    lay = _to_layout(parts, types, variants, [(c[0], c[1]) for c in out],
+                     [(k, 0, c[1], c[2], c[3]) for k, c in enumerate(out)], opts, scale, hides)
+    assert check_layout(parts, lay, rotations_override=angles) == []

@@ -185,15 +185,15 @@ class Placer:
             return []
         return [[[lx, ly], [hx, ly], [hx, hy], [lx, hy]]]
 
-    def hide_ifp(self, spec_index: int, vi: int) -> List[IntPath]:
+    def hide_ifp(self, spec_index: int, vi: int, concave: bool = False) -> List[IntPath]:
         """Inner-fit region of variant ``vi`` on hide ``spec_index`` (cached;
         for :mod:`hide_separation`): its convex hull against the hide outline
         even with ``concave_fit`` (a subset of the exact region, with fewer
         vertices: on two stuck Baldacci Test2 states the separation fitted a
         left-out copy in 3 of 8 seeded tries with these regions, 1 of 8 with
-        the exact ones)."""
+        the exact ones); ``concave``: the exact region (:attr:`concave_fit`)."""
         saved = self.bin_order, self.concave_fit
-        self.bin_order, self.concave_fit = [spec_index], False
+        self.bin_order, self.concave_fit = [spec_index], concave
         try:
             return self._ifp(0, self.variants[vi], _OPEN_STRIP)
         finally:

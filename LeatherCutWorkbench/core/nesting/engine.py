@@ -9,6 +9,7 @@ The caller (:func:`nest`) runs the validity checker on the result.
 
 from __future__ import annotations
 
+import logging
 import math
 import multiprocessing as mp
 import os
@@ -32,6 +33,8 @@ from .part_regions import nesting_grade, region_check, region_grade_levels
 from .search import Budget, Problem, search, worker_main
 from .shapes import PieceType, make_variants, piece_from_part
 from .tail import EXIT_S, Tail, current, runnable
+
+_log = logging.getLogger(__name__)
 
 #: The grid resolution: the largest container or part dimension spans this many units.
 GRID_UNITS = 2.0e6
@@ -150,6 +153,8 @@ class _Best:
         self.dirty = False
         #: ``time.monotonic()`` when the first layout arrived (None before)
         self.first_at: Optional[float] = None
+        #: where each layout refused for a lost copy came from (:attr:`Budget.copies`)
+        self.lost: List[str] = []
 
     def offer(self, worker: int, cost, order, placements) -> None:
         self.per_worker[worker] = (cost, order, placements)
@@ -299,7 +304,7 @@ def run_own(parts: Sequence[Part], options: NestOptions,
             return (stop is not None and stop()) or time.monotonic() > end[0]
 
         b = Budget(latest, quick, max_eval, stop_now, offer, tick, hard_stop=boxes,
-                   give_up_at=hard)
+                   give_up_at=hard, copies=sorted(copies), on_lost=lambda w: best.lost.append(w))
         evaluations = search(problem, copies, options.seed, 0, b)[3]
         workers_used = 1
     else:
@@ -320,6 +325,11 @@ def run_own(parts: Sequence[Part], options: NestOptions,
                            "time_s": round(time.monotonic() - t_start, 3),
                            "first_layout_s": round(best.first_at - t_start, 3), "seed": options.seed,
                            "stopped": bool(stop is not None and stop())})
+    if best.lost:
+        # a search defect, not the user's: the layout returned holds every copy
+        layout.metrics["refused_layouts"] = len(best.lost)
+        _log.warning("nesting: %d layouts that lost a copy were refused; first from %s",
+                     len(best.lost), best.lost[0])
     return layout
 
 
@@ -473,6 +483,8 @@ def _drain(queue, best: _Best, done: Dict[int, int], errors: List[str], timeout:
             done[msg[1]] = msg[2]
         elif msg[0] == "evals":
             best.evals[msg[1]] = msg[2]
+        elif msg[0] == "lost":
+            best.lost.append(f"worker {msg[1]}: {msg[2]}")
         else:
             errors.append(msg[2])
 

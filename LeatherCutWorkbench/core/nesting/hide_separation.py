@@ -73,15 +73,29 @@ N_INSERT = 1500
 POOL = 200
 
 
+@njit(cache=True, nogil=True, inline='always')
+def container_depth(x: float, y: float, v: int, pts, start, count, ring_lo, ring_hi, bbox) -> float:
+    """Container depth of variant ``v``'s reference point at (x, y): its
+    penetration depth (:func:`overlap.pair_depth`) in the complement of the
+    variant's inner-fit region (:class:`_Region`).  The complement ends at
+    the far box, where ``pair_depth`` would say 0 -- a copy pushed out of
+    the box (its region empty, or far from it: the complement's nearest edge
+    is then the box) would count as on the hide.  Outside the box the depth
+    is the box's width, deeper than anywhere inside it.  (A Baldacci Test6
+    repair placed a copy at x = -7.6e11 grid units that way: the tail's
+    checker then left it out.)"""
+    if x <= bbox[v, 0] or x >= bbox[v, 2] or y <= bbox[v, 1] or y >= bbox[v, 3]:
+        return bbox[v, 2] - bbox[v, 0]
+    return pair_depth(x, y, v, pts, start, count, ring_lo, ring_hi, bbox)
+
+
 @njit(cache=True, nogil=True)
 def container_depths(X, Y, V, pts, start, count, ring_lo, ring_hi, bbox):
-    """Container depth of every copy, as an (n, 1) matrix: the penetration
-    depth (:func:`overlap.pair_depth`) of its reference point in the
-    complement of its variant's inner-fit region (:class:`_Region`)."""
+    """:func:`container_depth` of every copy, as an (n, 1) matrix."""
     n = X.shape[0]
     out = np.zeros((n, 1))
     for i in range(n):
-        out[i, 0] = pair_depth(X[i], Y[i], V[i], pts, start, count, ring_lo, ring_hi, bbox)
+        out[i, 0] = container_depth(X[i], Y[i], V[i], pts, start, count, ring_lo, ring_hi, bbox)
     return out
 
 
@@ -92,7 +106,7 @@ def _cost(i, v, x, y, X, Y, V, Wi, wc, nv, limit, order, keys, cb, wmax, coff, c
     """Weighted penalty of copy ``i`` as variant ``v`` at (x, y): container
     depth (weight ``wc``) plus the pair overlaps (:func:`overlap.copy_penalty`,
     weights ``Wi``); stops early above ``limit``."""
-    d = pair_depth(x, y, v, cpts, cstart, ccount, clo, chi, cbox)
+    d = container_depth(x, y, v, cpts, cstart, ccount, clo, chi, cbox)
     c = 0.0
     if d > 0.0:
         off = ccoff[v] if d >= ramp else ccoff[v] * d / ramp
@@ -277,8 +291,12 @@ class HideSeparator:
         key = (hide, vi)
         hit = self._ifp.get(key)
         if hit is None:
-            hit = self._ifp[key] = [np.asarray(r, dtype=np.float64)
-                                    for r in self.placer.hide_ifp(hide, vi) if len(r) >= 3]
+            rings = [r for r in self.placer.hide_ifp(hide, vi) if len(r) >= 3]
+            if not rings:
+                # the hull fits nowhere, the outline may (a copy the fill placed with
+                # ``Placer.concave_fit``): its exact region, else the copy could only leave
+                rings = [r for r in self.placer.hide_ifp(hide, vi, concave=True) if len(r) >= 3]
+            hit = self._ifp[key] = [np.asarray(r, dtype=np.float64) for r in rings]
         return hit
 
     def _choices(self, hide: int, t: int, current: Optional[int]) -> List[int]:

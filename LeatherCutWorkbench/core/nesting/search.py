@@ -50,6 +50,7 @@ from __future__ import annotations
 import math
 import random
 import time
+import traceback
 from dataclasses import dataclass
 from queue import Empty
 from typing import Callable, List, Optional, Sequence, Tuple
@@ -204,7 +205,12 @@ class Budget:
     * ``give_up_at`` -- even the first fill ends then (copies left unplaced);
     * ``shared()`` -- the best layout another worker found since the last
       call, (cost, order, placements on hide indices), or None (hides: the
-      copy-to-hide search steps down from it when it beats its own)."""
+      copy-to-hide search steps down from it when it beats its own);
+    * ``copies`` -- the part type of every copy, sorted: a layout whose order
+      or placements do not hold exactly these is refused (:func:`cost_of`
+      counts only the copies left out, so one that lost a copy would look
+      complete and win), and ``on_lost(where)`` hears of it (the search's
+      call chain)."""
 
     t_end: float
     first_fill_until: float = math.inf
@@ -215,6 +221,8 @@ class Budget:
     hard_stop: float = math.inf
     give_up_at: float = math.inf
     shared: Optional[Callable[[], Optional[Tuple[Cost, List[Gene], Placements]]]] = None
+    copies: Optional[Sequence[int]] = None
+    on_lost: Optional[Callable[[str], None]] = None
 
     def done(self, evals: int) -> bool:
         if self.max_evaluations is not None and evals >= self.max_evaluations:
@@ -229,8 +237,20 @@ class Budget:
             raise CancelledError("nesting cancelled")
 
     def improved(self, cost: Cost, order: List[Gene], placements: Placements) -> None:
+        if self.copies is not None and not holds_every_copy(self.copies, order, placements):
+            if self.on_lost is not None:
+                self.on_lost(" < ".join(f.name for f in reversed(traceback.extract_stack(limit=9)[:-1])))
+            return
         if self.on_best is not None:
             self.on_best(cost, list(order), list(placements))
+
+
+def holds_every_copy(copies: Sequence[int], order: Sequence[Gene], placements: Placements) -> bool:
+    """Does ``order`` hold exactly the part types ``copies`` (sorted), and
+    ``placements`` one entry (placed or not) per position of ``order``?"""
+    return len(order) == len(copies) == len(placements) and \
+        sorted(g[0] for g in order) == list(copies) and \
+        sorted(p[0] for p in placements) == list(range(len(order)))
 
 
 #: hides: worker 0's very first fill tries this many orientations per copy,
@@ -508,10 +528,8 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
 
     def on_better(state) -> None:
         seq, placements, order = as_layout(state)
-        if len(placements) != len(every) or sorted(g[0] for g in seq) != every:
-            # a state that lost a copy would count as complete (cost_of counts
-            # only the copies left out); a 2-worker Test6 run reported 42/43
-            return
+        if not holds_every_copy(every, seq, placements):
+            return      # (see Budget.copies; kept out of ``holder`` too, which adopt compares)
         c = cost_of(problem, seq, placements, order)
         if c < holder[0][0]:
             holder[0], holder[1] = (c, seq, Trace(placements, [])), order
@@ -629,8 +647,9 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
                 wait_first: Optional[Tuple[object, float]] = None, inbox=None) -> None:
     """Entry point of a worker process: every new best goes to ``queue`` as
     ("best", worker, cost, order, placements), every 10 evaluations
-    ("evals", worker, count); the end as ("done", worker, evaluations) or
-    ("error", worker, message).  ``stop_event`` set = stop now.
+    ("evals", worker, count); a layout refused for a lost copy
+    (:attr:`Budget.copies`) as ("lost", worker, call chain); the end as
+    ("done", worker, evaluations) or ("error", worker, message).  ``stop_event`` set = stop now.
     ``wait_first`` = (event, time): start only once the event is set (the
     first layout exists) or the time passed.  ``inbox``: a queue of the
     other workers' best layouts (cost, order, placements), newest last
@@ -656,7 +675,8 @@ def worker_main(problem: Problem, copies: List[int], seed: int, worker: int, t_e
                 break
         return got
     budget = Budget(t_end, first_fill_until, max_evaluations, stop_event.is_set, on_best, tick,
-                    hard_stop=hard_stop, give_up_at=give_up_at, shared=shared)
+                    hard_stop=hard_stop, give_up_at=give_up_at, shared=shared,
+                    copies=sorted(copies), on_lost=lambda where: queue.put(("lost", worker, where)))
     try:
         _, _, _, evals = search(problem, copies, seed, worker, budget)
         queue.put(("done", worker, evals))
