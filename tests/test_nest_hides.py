@@ -116,3 +116,40 @@ def test_remnant_is_a_hide_the_next_nest_reads(capsys, tmp_path):
     second = [Polygon(i["polygon"]) for i in json.load(open(l2))["items"]]
     for a in second:
         assert all(a.intersection(b).area < 1e-6 for b in first)
+
+
+def test_a_best_layout_that_fails_the_final_check_gives_way_to_a_valid_earlier_one(monkeypatch):
+    """Fault injected around the real search (Test6 hide o_0, 7 copies, one
+    worker): after it, a corrupted copy of its best layout -- one copy moved
+    far off the hide -- is reported as a better one.  The final check finds
+    it; instead of taking that copy out (the safety net), the engine keeps
+    the search's own valid layout and says so."""
+    from dataclasses import replace
+    from LeatherCutWorkbench.core.nesting import engine
+    real = engine.search
+    injected = []
+
+    def search_then_corrupt(problem, copies, seed, worker, budget):
+        res = real(problem, copies, seed, worker, budget)
+        cost, order, placements, _evals = res
+        bad = list(placements)
+        k = next(i for i, p in enumerate(bad) if p[1] >= 0)
+        si, b, vi, x, y = bad[k]
+        bad[k] = (si, b, vi, x - 10 ** 9, y)              # far off the hide
+        injected.append(sum(p[1] >= 0 for p in placements))     # the search's own, placed
+        budget.improved((0.0,) + tuple(0 for _ in cost[1:]), order, bad)
+        return res
+
+    monkeypatch.setattr(engine, "search", search_then_corrupt)
+    inst = read_esicup(os.path.join(os.path.dirname(__file__), "data", "nest",
+                                    "Test6_items2_10_22_29_hide0.json"))
+    full = inst.hides[0].base_grade
+    parts = [replace(p, grade=full, grade_regions=[]) for p in inst.parts]
+    opts = NestOptions(container=ContainerSpec.hide(*inst.hides), time_budget=3, workers=1,
+                       rotations_override=[0.0, 90.0, 180.0, 270.0])
+    lay = nest(parts, opts)
+    assert injected
+    codes = [f.code for f in lay.findings]
+    assert "invalid-layout-replaced" in codes and "invalid-placement-removed" not in codes
+    assert check_layout(parts, lay, rotations_override=[0.0, 90.0, 180.0, 270.0]) == []
+    assert lay.metrics["placed_count"] == injected[0]      # the search's own layout, whole

@@ -36,7 +36,7 @@ from ..errors import InputError
 from ..geometry import Transform2D
 from ..model import Finding, Layout, Part
 from ..progress import ProgressFn, report
-from .checker import check_layout
+from .checker import check_layout, problem_labels
 from .containers import read_hide_dxf
 from .options import ContainerSpec, NestOptions, parse_rotations
 
@@ -87,10 +87,7 @@ def nest(parts: Sequence[Part], options: NestOptions, progress: Optional[Progres
 def _drop_invalid(parts: Sequence[Part], layout: Layout, problems: List[str],
                   options: NestOptions) -> None:
     """Move placements named in ``problems`` to unplaced (a safety net)."""
-    bad = set()
-    for msg in problems:
-        lab = msg.split(" ", 1)[0].rstrip(":")
-        bad.add(lab)
+    bad = problem_labels(problems)
     keep = []
     for pl in layout.placements:
         if f"{pl.part_id}#{pl.copy}" in bad:

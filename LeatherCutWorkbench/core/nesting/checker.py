@@ -25,7 +25,7 @@ A layout is valid when, within the length tolerance ``tol`` (mm):
 
 from __future__ import annotations
 
-from typing import Dict, List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence, Set
 
 from shapely import affinity, prepared
 from shapely.geometry import Polygon, box
@@ -114,6 +114,12 @@ class _ContainerShapes:
             self._zones[grade] = (region, prepared.prep(region))
         region, prep = self._zones[grade]
         return 0.0 if prep.covers(sh) else sh.difference(region).area
+
+
+def problem_labels(problems: Sequence[str]) -> Set[str]:
+    """The copies (``PART#COPY``) that :func:`check_layout`'s problems name
+    first: one per problem (of an overlapping pair, the first)."""
+    return {msg.split(" ", 1)[0].rstrip(":") for msg in problems}
 
 
 def check_layout(parts: Sequence[Part], layout: Layout, spacing: float = 0.0,

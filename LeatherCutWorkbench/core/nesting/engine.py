@@ -24,7 +24,7 @@ from ..errors import CancelledError, LeatherCutError
 from ..model import Container, Finding, Layout, Part, Placement
 from ..progress import ProgressFn, report
 from .blf import BinSpec
-from .checker import part_polygon, placed_polygon
+from .checker import part_polygon, placed_polygon, problem_labels
 from .containers import net_area, rectangle
 from .hide_regions import HideRegions
 from .hide_shapes import simplify_for_hides
@@ -155,14 +155,29 @@ class _Best:
         self.first_at: Optional[float] = None
         #: where each layout refused for a lost copy came from (:attr:`Budget.copies`)
         self.lost: List[str] = []
+        #: the last bests replaced by better ones (:meth:`alternatives`)
+        self.replaced: List[tuple] = []
 
     def offer(self, worker: int, cost, order, placements) -> None:
-        self.per_worker[worker] = (cost, order, placements)
+        self.per_worker[worker] = (cost, order, placements, worker)
         if self.first_at is None:
             self.first_at = time.monotonic()
         if self.best is None or (cost, worker) < (self.best[0], self.best[3]):
+            if self.best is not None:
+                self.replaced = (self.replaced + [self.best])[-FALLBACKS:]
             self.best = (cost, order, placements, worker)
             self.dirty = True
+
+    def alternatives(self) -> List[tuple]:
+        """Layouts other than the best, best first: each worker's latest best
+        and the last ``FALLBACKS`` bests it replaced."""
+        seen = {id(self.best)}
+        out = []
+        for c in list(self.per_worker.values()) + self.replaced:
+            if id(c) not in seen and c[2] is not self.best[2]:
+                seen.add(id(c))
+                out.append(c)
+        return sorted(out, key=lambda c: (c[0], c[3]))[:FALLBACKS]
 
     def message(self) -> str:
         return self.summary(self.best[0], self.best[2]) if self.best else "first fill"
@@ -316,6 +331,8 @@ def run_own(parts: Sequence[Part], options: NestOptions,
     cost, order, placements, _ = best.best
     report(progress, 0.97, "building the layout")
     layout = build(order, placements)
+    if on_hides:
+        layout = _valid_or_fallback(parts, options, tail, layout, best, build)
     if layout.unplaced and budget > 0 and time.monotonic() > hard:
         findings.append(Finding("warning", "time-budget-short",
                                 f"the time budget of {budget:g} s ended during the first fill: "
@@ -330,6 +347,35 @@ def run_own(parts: Sequence[Part], options: NestOptions,
         layout.metrics["refused_layouts"] = len(best.lost)
         _log.warning("nesting: %d layouts that lost a copy were refused; first from %s",
                      len(best.lost), best.lost[0])
+    return layout
+
+
+#: hides: earlier or other workers' layouts tried when the best fails the final check
+FALLBACKS = 3
+
+
+def _valid_or_fallback(parts: Sequence[Part], options: NestOptions, tail: Tail, layout: Layout,
+                       best: _Best, build: Callable) -> Layout:
+    """``layout`` (the best), or when the final check finds invalid
+    placements in it -- a search defect; :func:`nest`'s safety net would
+    take those copies out -- the first of :meth:`_Best.alternatives` that
+    passes the check and places at least as many copies as the best keeps
+    without them (a warning names what was replaced).  The check is
+    remembered (:meth:`Tail.check`): :func:`nest` does not repeat it."""
+    problems = tail.check(parts, layout, options)
+    if not problems:
+        return layout
+    bad = problem_labels(problems)
+    keeps = len(layout.placements) - len(bad)
+    for _cost, order, placements, worker in best.alternatives():
+        alt = build(order, placements)
+        if len(alt.placements) >= keeps and not tail.check(parts, alt, options):
+            alt.findings.append(Finding(
+                "warning", "invalid-layout-replaced",
+                f"the best layout found had {len(bad)} invalid placements "
+                f"({', '.join(sorted(bad)[:5])}: {problems[0]}); kept instead the valid layout "
+                f"of worker {worker} with {len(alt.placements)} copies placed"))
+            return alt
     return layout
 
 
