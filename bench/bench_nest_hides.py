@@ -20,7 +20,8 @@ the hides used.  Every own layout is re-checked by the independent checker.
 first), to see the run-to-run spread.  Column *dropped*: copies the
 engine's own final check took out of the search's layout (invalid
 placements, each named in an ``invalid-placement-removed`` finding; they
-count as unplaced) -- 0 unless the search has a defect.
+count as unplaced; "best replaced": the engine kept an earlier valid layout
+instead, ``invalid-layout-replaced``) -- 0 unless the search has a defect.
 Prints one Markdown table row per instance and engine run.
 """
 
@@ -60,9 +61,11 @@ def run_own(path: str, budget: float, workers: int, graded: bool):
     wall = time.monotonic() - t0
     problems = check_layout(parts, lay, rotations_override=ANGLES)
     m = lay.metrics
-    dropped = {f.message.split(" ", 1)[0] for f in lay.findings
-               if f.code == "invalid-placement-removed"}
-    return {"engine": "own", "wall_s": wall, "hides_used": m["hides"], "dropped": len(dropped),
+    dropped = len({f.message.split(" ", 1)[0] for f in lay.findings
+                   if f.code == "invalid-placement-removed"})
+    replaced = any(f.code == "invalid-layout-replaced" for f in lay.findings)
+    return {"engine": "own", "wall_s": wall, "hides_used": m["hides"],
+            "dropped": f"{dropped}{', best replaced' if replaced else ''}",
             "hides": len(hides), "placed": m["placed_count"],
             "copies": sum(p.quantity for p in parts), "item_area": m["item_area_mm2"],
             "utilisation": m["utilisation"], "valid": not problems,
