@@ -283,6 +283,13 @@ def test_engine_search_ends_at_its_plateau():
     assert stall.stop()
     user = _Stall(100.0, None, lambda: True)
     assert user.stop()                            # the user's Stop always counts
+    # sheets: no plateau counts before the other workers' first fills had their time
+    late = _Stall(0.05, None, None, not_before=time.monotonic() + 0.4)
+    late.on_best("layout")
+    time.sleep(0.15)
+    assert not late.stop()
+    time.sleep(0.3)
+    assert late.stop()
 
 
 def _exploring(lay, parts, opts):

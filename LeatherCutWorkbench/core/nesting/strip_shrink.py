@@ -41,6 +41,7 @@ import copy
 import dataclasses
 import importlib
 import importlib.util
+import math
 import os
 import threading
 import time
@@ -88,6 +89,12 @@ MIN_SEARCH_SHARE = 0.08
 #: the phase gets what is left (a fixed 75 % share left WM_SLIM_TANK at T = 10
 #: on 9 sheets with 2.7 s unused, because its last sheet holds one copy)
 SHEET_STALL_SHARE = 0.2
+#: ... and not before this share of the budget: until then the other workers
+#: make their first, exact fills (``engine._deadlines``: 40 % of T), so a
+#: plateau may be worker 0's quick layout alone (WM_SLIM_TANK at T = 10 in 3
+#: of 4 runs of one benchmark: 9 sheets at 1.1 s, the search ended at 3.1 s
+#: and 6.7 s went unused; 7 sheets when worker 1's first layout came in time)
+SHEET_MIN_SEARCH_SHARE = 0.4
 #: on a strip the engine's search also ends once it has not found a shorter
 #: layout for this share of the budget (at least ``STALL_MIN_S``): it reaches
 #: its plateau in a few seconds (measured: shirts 3.6 s, shapes0 5.2 s, fu
@@ -486,7 +493,8 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
     first = dataclasses.replace(options, started_at=t0,
                                 time_budget=spent + (options.time_budget - spent) * share)
     stall_share = STALL_SHARE if kind == "strip" else SHEET_STALL_SHARE
-    stall = _Stall(max(STALL_MIN_S, stall_share * options.time_budget), on_best, stop)
+    not_before = t0 + (0.0 if kind == "strip" else SHEET_MIN_SEARCH_SHARE * options.time_budget)
+    stall = _Stall(max(STALL_MIN_S, stall_share * options.time_budget), on_best, stop, not_before)
     layout = run_own(parts, first, progress, stall.on_best, stall.stop)
     layout.metrics["stopped"] = bool(stop is not None and stop())
     if stop is not None and stop():
@@ -505,11 +513,13 @@ def nest_compacted(parts: Sequence[Part], options: NestOptions,
 
 class _Stall:
     """Ends the engine's search once no shorter layout came for ``stall_s``
-    seconds (or on the user's *Stop*); passes each better layout on."""
+    seconds, not before ``not_before`` (``time.monotonic()``), or on the
+    user's *Stop*; passes each better layout on."""
 
     def __init__(self, stall_s: float, on_best: Optional[Callable[[Layout], None]],
-                 user_stop: Optional[Callable[[], bool]]):
+                 user_stop: Optional[Callable[[], bool]], not_before: float = -math.inf):
         self.stall_s, self._on_best, self._user_stop = stall_s, on_best, user_stop
+        self.not_before = not_before
         self._last: Optional[float] = None
 
     def on_best(self, layout: Layout) -> None:
@@ -520,7 +530,8 @@ class _Stall:
     def stop(self) -> bool:
         if self._user_stop is not None and self._user_stop():
             return True
-        return self._last is not None and time.monotonic() - self._last > self.stall_s
+        now = time.monotonic()
+        return self._last is not None and now >= self.not_before and now - self._last > self.stall_s
 
 
 def _search_share(parts: Sequence[Part]) -> float:
