@@ -4,7 +4,10 @@ Steps: flatten parts (:mod:`shapes`), build the grid variants and the
 container bins, run the bottom-left fill and the anytime search
 (:mod:`search`) in worker processes, turn the best placements into a
 :class:`~LeatherCutWorkbench.core.model.Layout` with container figures.
-The caller (:func:`nest`) runs the validity checker on the result.
+The caller (:func:`nest`) runs the validity checker on the result; on
+hides the engine checks it first and, if it fails, keeps an earlier or
+another worker's valid layout when that places as many copies
+(:func:`_valid_or_fallback`).
 """
 
 from __future__ import annotations
