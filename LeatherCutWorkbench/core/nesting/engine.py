@@ -162,22 +162,23 @@ class _Best:
         self.replaced: List[tuple] = []
 
     def offer(self, worker: int, cost, order, placements) -> None:
-        self.per_worker[worker] = (cost, order, placements, worker)
+        entry = (cost, order, placements, worker)
+        self.per_worker[worker] = entry
         if self.first_at is None:
             self.first_at = time.monotonic()
         if self.best is None or (cost, worker) < (self.best[0], self.best[3]):
             if self.best is not None:
                 self.replaced = (self.replaced + [self.best])[-FALLBACKS:]
-            self.best = (cost, order, placements, worker)
+            self.best = entry
             self.dirty = True
 
     def alternatives(self) -> List[tuple]:
-        """Layouts other than the best, best first: each worker's latest best
-        and the last ``FALLBACKS`` bests it replaced."""
+        """Layouts other than the best, best first, each once: each worker's
+        latest best and the last ``FALLBACKS`` bests it replaced."""
         seen = {id(self.best)}
         out = []
         for c in list(self.per_worker.values()) + self.replaced:
-            if id(c) not in seen and c[2] is not self.best[2]:
+            if id(c) not in seen:
                 seen.add(id(c))
                 out.append(c)
         return sorted(out, key=lambda c: (c[0], c[3]))[:FALLBACKS]
