@@ -8,12 +8,15 @@ import random
 import time
 from dataclasses import replace
 
+import numpy as np
+
 from LeatherCutWorkbench.core.model import Container
 from LeatherCutWorkbench.core.nesting import ContainerSpec, NestOptions, check_layout, placed_parts
 from LeatherCutWorkbench.core.nesting.engine import _to_layout, prepare
 from LeatherCutWorkbench.core.nesting.esicup import read_esicup
 from LeatherCutWorkbench.core.nesting.hide_assign import AssignmentSearch, as_layout, from_placed
 from LeatherCutWorkbench.core.nesting.hide_choice import as_hide_indices
+from LeatherCutWorkbench.core.nesting.hide_patterns import HidePatterns
 from LeatherCutWorkbench.core.nesting.search import _mutate
 
 DATA = os.path.join(os.path.dirname(__file__), "data", "nest")
@@ -106,6 +109,40 @@ def test_a_search_takes_over_a_better_complete_set_of_another_worker():
     assert seen[-1].hides == [2] and seen[-1].traces[0].placements == placements
     seq, placements, hide_order = as_layout(seen[-1])
     lay = _to_layout(parts, types, variants, seq, as_hide_indices(placements, hide_order), opts,
+                     scale, hides)
+    assert check_layout(parts, lay, rotations_override=ANGLES) == []
+    assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1
+
+
+def test_a_search_recombines_a_hide_packing_it_saw_into_a_smaller_complete_set():
+    """``patterns`` (:mod:`hide_patterns`): a bottom-up fill that held every
+    copy on the smallest hide is among the packings seen; a search on the two
+    larger hides recombines it into that one-hide layout -- the very
+    placements, checker-valid -- instead of finding it by its own fills."""
+    parts, hides, opts, (types, variants, problem, copies, _h, scale) = _setup([0.7, 0.8, 0.6])
+    order = sorted(copies, key=lambda t: -problem.type_area[t])
+    patterns = HidePatterns(np.bincount(copies, minlength=len(problem.type_area)),
+                            problem.hide_net, problem.type_area)
+    theirs = problem.placer()
+    theirs.gravity = "y"
+    other = AssignmentSearch(problem, theirs, random.Random(1), _mutate, lambda: False,
+                             patterns=patterns).start([2], [[(t, None) for t in order]])
+    assert other.total == 0 and len(patterns) == 1
+    placements = as_layout(other)[1]
+    t_end = time.monotonic() + 4.0
+    s = AssignmentSearch(problem, problem.placer(), random.Random(4), _mutate,
+                         lambda: time.monotonic() > t_end, t_end, patterns=patterns)
+    st = s.start([1, 0], [[(t, None) for t in order[0::2]], [(t, None) for t in order[1::2]]])
+    assert st.total == 0
+    seen = []
+    s.run(st, problem.hide_net, lambda state: seen.append(state.copy()),
+          sum(problem.type_area[t] for t in copies))
+    assert s.recombined >= 1
+    one = [x for x in seen if x.hides == [2]]
+    assert one and one[0].total == 0
+    seq, got, hide_order = as_layout(one[0])
+    assert sorted(got) == sorted(placements)
+    lay = _to_layout(parts, types, variants, seq, as_hide_indices(got, hide_order), opts,
                      scale, hides)
     assert check_layout(parts, lay, rotations_override=ANGLES) == []
     assert lay.metrics["unplaced_count"] == 0 and lay.metrics["hides"] == 1

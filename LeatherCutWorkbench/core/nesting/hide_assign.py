@@ -50,6 +50,7 @@ import time
 from typing import Callable, List, Optional, Sequence, Tuple
 
 from .blf import BinState, Placer, Trace
+from .hide_patterns import HidePatterns
 
 Gene = Tuple[int, Optional[int]]
 Placements = List[Tuple[int, int, int, int, int]]
@@ -84,6 +85,12 @@ GRAVITY_P = 0.05
 GRAVITIES = ("x", "y", "-x", "-y")
 #: seconds between two looks at the other workers' best (:meth:`AssignmentSearch.run`)
 ADOPT_S = 0.5
+#: seconds between two recombinations of the hide packings seen
+#: (:meth:`AssignmentSearch._recombine`, only when new ones came), and the
+#: solver's time limit: at most this many seconds, this share of the time left
+RECOMBINE_S = 2.0
+RECOMBINE_MAX_S = 0.5
+RECOMBINE_SHARE = 0.05
 
 
 class _Hides:
@@ -119,7 +126,7 @@ class AssignmentSearch:
 
     def __init__(self, problem, placer: Placer, rng: random.Random,
                  mutate: Callable, expired: Callable[[], bool], deadline: float = math.inf,
-                 lane: int = 0):
+                 lane: int = 0, patterns: Optional[HidePatterns] = None):
         self.problem = problem
         self.deadline = deadline          # time.monotonic() at which ``expired`` turns True
         self.placer = placer
@@ -133,6 +140,9 @@ class AssignmentSearch:
         self._separator = None
         self.repairs = [0, 0]             # repairs tried, copies they fitted
         self.lane = lane
+        #: every hide packing a fill makes, recombined by :meth:`_recombine`
+        self.patterns = patterns
+        self.recombined = 0               # complete states the recombination gave
 
     # ----------------------------------------------------------------- fills
     def _fill(self, st: _Hides, p: int, first: int, limit: float) -> bool:
@@ -162,6 +172,9 @@ class AssignmentSearch:
         finally:
             pl.bin_order, pl.max_bins, pl.gravity = saved
         self.evals += 1
+        if tr is not None and self.patterns is not None:
+            self.patterns.add(st.hides[p], [(seq[si][0], vi, tx, ty)
+                                            for (si, b, vi, tx, ty) in tr.placements if b >= 0])
         return tr
 
     def _recount(self, st: _Hides, p: int) -> None:
@@ -293,6 +306,7 @@ class AssignmentSearch:
         the set to go back to."""
         cur = set_best = st
         asked = -math.inf
+        recombined = -math.inf              # the first recombination comes at once
         hist = [cur.total] * history
         low = cur.total
         repaired: set = set()                    # (hides, area left out) repairs tried
@@ -317,6 +331,15 @@ class AssignmentSearch:
                 elif other is not None and (last_done is None or
                                             size < sum(net[h] for h in last_done.hides)):
                     last_done, tried = other, set()     # where a stuck search goes back to
+            if self.patterns is not None and self.patterns.fresh and \
+                    time.monotonic() - recombined >= RECOMBINE_S:
+                recombined = time.monotonic()
+                other = self._recombine(last_done, net)
+                if other is not None:
+                    cur = set_best = other
+                    low, since, spent = cur.total, 0, 0
+                    hist = [cur.total] * history
+                    on_better(cur)
             if cur.total < low:
                 low, since, set_best = cur.total, 0, cur
                 on_better(cur)
@@ -355,6 +378,21 @@ class AssignmentSearch:
                 cur = new
             if cur.total < hist[slot]:
                 hist[slot] = cur.total
+
+    def _recombine(self, done: Optional[_Hides], net: Sequence[float]) -> Optional[_Hides]:
+        """A complete state from the hide packings seen (:mod:`hide_patterns`)
+        with fewer hides than ``done`` (the last set that held every copy),
+        or as many and less net area; None when the packings give none."""
+        below = (len(net) + 1, 0.0) if done is None else \
+            (len(done.hides), sum(net[h] for h in done.hides))
+        left = self.deadline - time.monotonic()
+        cover = self.patterns.best_cover(below, min(RECOMBINE_MAX_S, RECOMBINE_SHARE * left))
+        if cover is None or self.expired():
+            return None
+        st = _Hides([h for h, _ in cover], [[(c[0], c[1]) for c in cps] for _, cps in cover])
+        st.traces = [_explicit_trace(self.placer, [c[1:] for c in cps], 0) for _, cps in cover]
+        self.recombined += 1
+        return st
 
     def _repair(self, st: _Hides) -> Optional[_Hides]:
         """A copy of ``st`` with some of its left-out copies fitted by
@@ -421,6 +459,8 @@ class AssignmentSearch:
                     if q != p:
                         _drop_unplaced(new, p, si)
                         self._recount(new, p)
+                    if self.patterns is not None:
+                        self.patterns.add(new.hides[q], res)
                     new.genes[q] = [(c[0], c[1]) for c in res] + rest
                     new.traces[q] = _explicit_trace(self.placer, [c[1:] for c in res], len(rest))
                     new.lost[q] = sum(self.area[g[0]] for g in rest)

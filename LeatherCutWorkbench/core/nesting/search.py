@@ -55,10 +55,13 @@ from dataclasses import dataclass
 from queue import Empty
 from typing import Callable, List, Optional, Sequence, Tuple
 
+import numpy as np
+
 from .blf import BinSpec, Placer
 from .convex_sums import warm_up
 from .hide_choice import (as_hide_indices, first_affected, hide_cost, initial_order, swap_hides,
                           tight_order, used_positions)
+from .hide_patterns import HidePatterns
 from .shapes import Variant
 
 Gene = Tuple[int, Optional[int]]          # (type index, forced variant or None)
@@ -382,13 +385,20 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
     best, evals = _first_fills(problem, placer, copies, worker, budget, quick=assign)
     cur_cost, cur_seq, cur_pl = best
     cur_hides = best_hides = placer.bin_order
+    # every hide packing this worker's fills make, for the copy-to-hide search
+    # to recombine (hide_patterns)
+    patterns = HidePatterns(np.bincount(copies, minlength=len(problem.type_area)),
+                            problem.hide_net, problem.type_area) if choose_hides else None
+    if patterns is not None:
+        patterns.add_layout(cur_seq, cur_pl.placements, cur_hides)
     if assign:
         if not budget.done(evals):
             k = len(used_positions(cur_pl.placements))
             k = min(k, _fewest_loose(problem.hide_net, sum(problem.type_area[c] for c in copies)))
             seed_hides = tight_order(problem.hide_net, k)[:k]
             best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
-                                                    best_hides, evals, seed_hides, worker=worker)
+                                                    best_hides, evals, seed_hides, worker=worker,
+                                                    patterns=patterns)
         return best[0], best[1], _out(best[2].placements, best_hides), evals
     if worker % 2 == 1 and len(copies) > 1 and not budget.done(evals):
         seq = list(cur_seq)                   # diversify the second worker's start
@@ -427,7 +437,8 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
             placer.concave_fit = True
             used = [best_hides[p] for p in used_positions(best[2].placements)]
             best, best_hides, evals = _assign_hides(problem, placer, rng, budget, best,
-                                                    best_hides, evals, used, worker=worker)
+                                                    best_hides, evals, used, worker=worker,
+                                                    patterns=patterns)
             break
         new_hides, first = cur_hides, -1
         if choose_hides and (len(copies) < 2 or rng.random() < 0.15):
@@ -453,6 +464,8 @@ def run_search(problem: Problem, copies: List[int], seed: int, worker: int,
         new_pl = placer.place(new_seq, cur_pl, first,
                               give_up=(max(cur_cost[0], h[0]), problem.type_area))
         if new_pl is not None:                # None: gave up early or out of time
+            if patterns is not None:
+                patterns.add_layout(new_seq, new_pl.placements, new_hides)
             c = cost_of(problem, new_seq, new_pl.placements, new_hides)
             if c <= cur_cost or c <= h:
                 cur_cost, cur_seq, cur_pl, cur_hides = c, new_seq, new_pl, new_hides
@@ -498,7 +511,8 @@ def _stalled(t_start: float, last_gain: float, t_end: float, best_cost: Cost) ->
 
 
 def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: Budget,
-                  best, best_hides: List[int], evals: int, hides: List[int], *, worker: int = 0):
+                  best, best_hides: List[int], evals: int, hides: List[int], *, worker: int = 0,
+                  patterns: "Optional[HidePatterns]" = None):
     """Hides, odd workers right after a quick first fill (even workers once
     their order search stalled, on the hides of their best layout): the
     copy-to-hide search of :mod:`hide_assign` on ``hides`` -- the k smallest,
@@ -548,7 +562,8 @@ def _assign_hides(problem: Problem, placer: Placer, rng: random.Random, budget: 
         holder[0], holder[1] = (c, seq, Trace(placements, [])), order
         return other
 
-    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end, lane=worker % 2)
+    s = AssignmentSearch(problem, placer, rng, _mutate, expired, budget.t_end, lane=worker % 2,
+                         patterns=patterns)
     st = s.start(hides, genes)
     if st is not None:
         s.run(st, net, on_better, item_area, adopt=adopt)
